@@ -1,0 +1,78 @@
+"""Argument checks shared by the public layer.
+
+Every message names the argument, the rule, the unit and the offending value, e.g.
+``pressure must be finite [Pa]; got pressure[3] = nan``.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "as_float_array",
+    "check_finite",
+    "check_positive",
+    "check_nonnegative",
+    "check_nondecreasing",
+    "check_choice",
+]
+
+
+def _where(name: str, arr: np.ndarray, mask: np.ndarray) -> str:
+    if arr.ndim == 0:
+        return f"{name} = {arr.item()!r}"
+    idx = tuple(int(i) for i in np.argwhere(mask)[0])
+    label = ",".join(str(i) for i in idx)
+    return f"{name}[{label}] = {arr[idx]!r}"
+
+
+def as_float_array(value, name: str, unit: str, *, ndim: tuple[int, ...] | None = None) -> np.ndarray:
+    """Convert to a float64 array, rejecting non-numeric input with a clear message."""
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a real number or array of them [{unit}]; got {value!r}") from exc
+    if ndim is not None and arr.ndim not in ndim:
+        raise ValueError(
+            f"{name} must have {' or '.join(str(n) for n in ndim)} dimension(s) [{unit}]; "
+            f"got shape {arr.shape}"
+        )
+    return arr
+
+
+def check_finite(arr: np.ndarray, name: str, unit: str) -> None:
+    bad = ~np.isfinite(arr)
+    if np.any(bad):
+        raise ValueError(f"{name} must be finite [{unit}]; got {_where(name, arr, bad)}")
+
+
+def check_positive(arr: np.ndarray, name: str, unit: str) -> None:
+    check_finite(arr, name, unit)
+    bad = ~(arr > 0)
+    if np.any(bad):
+        raise ValueError(f"{name} must be > 0 [{unit}]; got {_where(name, arr, bad)}")
+
+
+def check_nonnegative(arr: np.ndarray, name: str, unit: str) -> None:
+    check_finite(arr, name, unit)
+    bad = ~(arr >= 0)
+    if np.any(bad):
+        raise ValueError(f"{name} must be >= 0 [{unit}]; got {_where(name, arr, bad)}")
+
+
+def check_nondecreasing(arr: np.ndarray, name: str, unit: str) -> None:
+    check_finite(arr, name, unit)
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be one-dimensional [{unit}]; got shape {arr.shape}")
+    d = np.diff(arr)
+    bad = d < 0
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ValueError(
+            f"{name} must be non-decreasing [{unit}]; got {name}[{i}] = {arr[i]!r} > {name}[{i + 1}] = {arr[i + 1]!r}"
+        )
+
+
+def check_choice(value, name: str, choices) -> None:
+    if value not in choices:
+        valid = ", ".join(repr(c) for c in choices)
+        raise ValueError(f"{name} must be one of {valid}; got {value!r}")
