@@ -1,0 +1,532 @@
+"""The stress diffusion with an absorbing wall, one pressure at a time (``@njit``).
+
+Problem (THEORY.md section 2), in diffusion time G:
+    dP/dG = d2P/dsigma2,  P(sigma, 0) = delta(sigma - sigma0),  P(-sigma_a(G), G) = 0,
+with sigma_a(G) piecewise linear in G between schedule points (a flat stretch of G is a jump).
+
+Scheme
+------
+Distance to the wall y = sigma + sigma_a(G), start y0 = sigma0 + sigma_a(0). Everything is
+scaled by y0 (so y0 = 1 inside). The grid follows the spreading width through the similarity
+coordinate xi = y / w(G), w^2 = 1 + 4G, and the log-time s = ln(w)/2 (ds = dG / w^2). The
+density p = w Q (Q the density in y) obeys the Fokker-Planck equation
+
+    p_s = d/dxi [ p_xi + (2 xi - w v) p ],     v = d sigma_a / dG,
+
+on the fixed grid xi_j = j h, j = 0..N, p_0 = 0 (absorbing wall), p_N = 0 (far field). Space:
+conservative central differences (second order); the uniform wall drift w v is
+exponentially fitted (its cell Peclet number raises the diffusion coefficient uniformly),
+which keeps thin wall layers monotone and the moment identities exact. Time: theta-steps, Crank-Nicolson with a
+Rannacher start (implicit-Euler half steps) after every boundary jump. Steps are uniform in
+ln G (geometric in G), the natural step both while the profile is narrow (G << y0^2) and in
+the late similarity regime, so the cost per decade of G is fixed.
+
+Exact discrete bookkeeping: with the step size dt chosen from the step's growth ratio
+r = w_{n+1}/w_n as dt = (r - 1)/(2 theta + 2 (1 - theta) r) and the drift evaluated with the
+arithmetic mean of w, the discrete area, first moment, detached area and detached load obey
+    A + detached = 1,   load = sigma0 + detached_load
+to rounding error (far-field leakage aside, which is reported).
+
+The start is an exact solution at a small G_s (free Gaussian or the linearly moving wall),
+projected onto the grid so that its discrete area and first moment are exact. The two runs
+(N, M) and (2N, 2M) are combined by Richardson extrapolation, which cancels the leading
+O(h^2 + dt^2) error; their difference is the reported error estimate.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import njit_serial
+from . import status as st
+from .special import linear_wall_area_moment, linear_wall_density, normal_pdf, ndtr
+from .tridiag import fitted_diffusion, theta_step
+
+# --- constants of the scheme (dimensionless, y0 = 1) ------------------------------------
+C_START = 0.25        # latest start G_s = C_START * y0^2: start std = 0.71 y0
+K_WALL_FAR = 7.0      # a free Gaussian is exact while the wall stays 7 std away (2 Phi(-7) = 3e-12)
+K_DOMAIN = 6.5        # far end of the grid beyond the farthest profile centre, in xi units
+H_BASE = 0.07         # coarse node spacing in xi at rtol = 1e-6
+NPER_BASE = 5.0       # coarse steps per unit of ln G at rtol = 1e-6 (11.5 per decade)
+NPER_WIDTH = 40.0     # coarse steps per profile width sqrt(2G) travelled by the wall
+PECLET_MAX = 4.0      # largest cell Peclet number of the wall drift (exponentially fitted)
+N_MAX = 20000         # node cap of the coarse grid
+LEAK_TOL = 1e-10      # far-field leakage above this is flagged
+GAUSS3_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
+GAUSS3_W = (5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0)
+
+
+@njit_serial
+def boundary_at(G_k, sa_k, g):
+    """sigma_a at diffusion time g: linear between schedule points, constant outside.
+
+    At a flat stretch (repeated G) the value after the jump is returned.
+    """
+    n = G_k.shape[0]
+    if g <= G_k[0]:
+        return sa_k[0]
+    if g >= G_k[n - 1]:
+        return sa_k[n - 1]
+    lo = 0
+    hi = n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if G_k[mid] <= g:
+            lo = mid
+        else:
+            hi = mid
+    # G_k[lo] <= g < G_k[hi]; skip to the last of equal G values
+    return sa_k[lo] + (sa_k[hi] - sa_k[lo]) * (g - G_k[lo]) / (G_k[hi] - G_k[lo])
+
+
+@njit_serial
+def _running_min_wall_distance(G_k, sa_k, sa0, g):
+    """min over G' <= g of y_c(G') = 1 + sigma_a(G') - sigma_a(0) (scaled units)."""
+    m = 1.0
+    n = G_k.shape[0]
+    for k in range(n):
+        if G_k[k] > g:
+            break
+        yc = 1.0 + sa_k[k] - sa0
+        if yc < m:
+            m = yc
+    yc = 1.0 + boundary_at(G_k, sa_k, g) - sa0
+    if yc < m:
+        m = yc
+    return m
+
+
+@njit_serial
+def _wall_far_start(G_k, sa_k, sa0):
+    """Largest G <= C_START over which the wall stays K_WALL_FAR std from the free Gaussian."""
+    lo = 0.0
+    hi = C_START
+    if _running_min_wall_distance(G_k, sa_k, sa0, hi) >= K_WALL_FAR * math.sqrt(2.0 * hi):
+        return hi
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if _running_min_wall_distance(G_k, sa_k, sa0, mid) >= K_WALL_FAR * math.sqrt(2.0 * mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit_serial
+def _interp_cubic(p, h, x):
+    """Cubic Lagrange interpolation of the node values p at x (odd reflection at the wall)."""
+    n = p.shape[0] - 1
+    if x <= 0.0 or x >= n * h:
+        return 0.0
+    k = int(x / h)
+    if k >= n:
+        k = n - 1
+    t = x / h - k
+    # nodes k-1, k, k+1, k+2
+    vals0 = -p[1] if k == 0 else p[k - 1]
+    vals1 = p[k]
+    vals2 = p[k + 1]
+    vals3 = p[k + 2] if k + 2 <= n else 0.0
+    l0 = -t * (t - 1.0) * (t - 2.0) / 6.0
+    l1 = (t + 1.0) * (t - 1.0) * (t - 2.0) / 2.0
+    l2 = -(t + 1.0) * t * (t - 2.0) / 2.0
+    l3 = (t + 1.0) * t * (t - 1.0) / 6.0
+    return l0 * vals0 + l1 * vals1 + l2 * vals2 + l3 * vals3
+
+
+@njit_serial
+def _moments(p, h):
+    """Discrete area h*sum(p) and first moment h*sum(xi p) (p_0 = p_N = 0)."""
+    a = 0.0
+    m = 0.0
+    for j in range(1, p.shape[0] - 1):
+        a += p[j]
+        m += j * h * p[j]
+    return a * h, m * h
+
+
+@njit_serial
+def _project_moments(p, h, target_area, target_m1):
+    """Multiply p by (alpha + beta xi) so that its discrete area and first moment hit the targets."""
+    s0 = 0.0
+    s1 = 0.0
+    s2 = 0.0
+    for j in range(1, p.shape[0] - 1):
+        x = j * h
+        s0 += p[j]
+        s1 += x * p[j]
+        s2 += x * x * p[j]
+    s0 *= h
+    s1 *= h
+    s2 *= h
+    det = s0 * s2 - s1 * s1
+    if s0 <= 0.0:
+        return
+    if abs(det) <= 1e-14 * s0 * s2:
+        alpha = target_area / s0
+        beta = 0.0
+    else:
+        alpha = (target_area * s2 - target_m1 * s1) / det
+        beta = (s0 * target_m1 - s1 * target_area) / det
+    for j in range(1, p.shape[0] - 1):
+        p[j] *= alpha + beta * j * h
+
+
+@njit_serial
+def _cut_integrals(p, h, c):
+    """Integrals of the interpolated profile over [0, c]: (mass, first moment in xi)."""
+    mass = 0.0
+    mom = 0.0
+    k = 0
+    while k * h < c:
+        a = k * h
+        b = min((k + 1) * h, c)
+        half = 0.5 * (b - a)
+        mid = 0.5 * (a + b)
+        for q in range(3):
+            x = mid + half * GAUSS3_X[q]
+            f = _interp_cubic(p, h, x)
+            mass += GAUSS3_W[q] * half * f
+            mom += GAUSS3_W[q] * half * f * x
+        k += 1
+    return mass, mom
+
+
+@njit_serial
+def _jump(p, h, d_xi, tmp):
+    """Shift the profile by d_xi (wall jump), cutting what falls behind the wall.
+
+    Returns (cut_mass, cut_m1): the removed mass and its first moment in the old xi.
+    The retained area and first moment are kept exact by a moment projection.
+    """
+    n = p.shape[0] - 1
+    a_old, m_old = _moments(p, h)
+    cut_mass = 0.0
+    cut_m1 = 0.0
+    if d_xi < 0.0:
+        cut_mass, cut_m1 = _cut_integrals(p, h, -d_xi)
+        if cut_mass > a_old:
+            cut_mass = a_old
+    tmp[0] = 0.0
+    tmp[n] = 0.0
+    for j in range(1, n):
+        tmp[j] = _interp_cubic(p, h, j * h - d_xi)
+    for j in range(n + 1):
+        p[j] = tmp[j]
+    t0 = a_old - cut_mass
+    t1 = (m_old - cut_m1) + d_xi * t0
+    if t0 <= 0.0:
+        for j in range(n + 1):
+            p[j] = 0.0
+        return a_old, m_old
+    _project_moments(p, h, t0, t1)
+    return cut_mass, cut_m1
+
+
+@njit_serial
+def _fluxes(p, h, drift, diff):
+    """Mass fluxes out of the grid at the wall and at the far end (per unit s)."""
+    n = p.shape[0] - 1
+    c_wall = h - drift
+    c_far = 2.0 * (n - 0.5) * h - drift
+    f_wall = p[1] * (diff / h + 0.5 * c_wall)
+    f_far = p[n - 1] * (diff / h - 0.5 * c_far)
+    return f_wall, f_far
+
+
+@njit_serial
+def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nodes, h,
+          n_steps_per_lng, n_steps_per_width, refine, n_damp, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs, scratch,
+          out_area, out_load, out_det_area, out_det_load):
+    """March one resolution from the exact start at ``g_start`` through the schedule.
+
+    Scaled units (y0 = 1). Each schedule piece gets ``refine`` times the steps that
+    ``n_steps_per_lng`` (per unit of ln G) asks for, so that two resolutions step in exact ratio. Fills outputs for schedule indices >= ``i_first``. Returns
+    (status, leak) where leak is the mass lost through the far end.
+    """
+    n = n_nodes - 1
+    w = math.sqrt(1.0 + 4.0 * g_start)
+    # exact start profile on the grid
+    sa_s = boundary_at(G_k, sa_k, g_start)
+    yc = 1.0 + sa_s - sa0
+    for j in range(n + 1):
+        y = j * h * w
+        if start_linear:
+            p[j] = w * linear_wall_density(y, 1.0, b_start, g_start)
+        else:
+            p[j] = w * normal_pdf(y - yc, 2.0 * g_start)
+    p[0] = 0.0
+    p[n] = 0.0
+    if start_linear:
+        a_s, m1_s = linear_wall_area_moment(1.0, b_start, g_start)
+    else:
+        sd = math.sqrt(2.0 * g_start)
+        u = yc / sd
+        a_s = ndtr(u)
+        m1_s = yc * a_s + sd * math.exp(-0.5 * u * u) / math.sqrt(2.0 * math.pi)
+    _project_moments(p, h, a_s, m1_s / w)
+    det = 1.0 - a_s
+    load_s = m1_s - sa_s * a_s
+    det_load = load_s - sigma0
+    leak = 0.0
+    damp_left = 0
+    g_cur = g_start
+    sa_cur = sa_s
+    n_out = G_k.shape[0]
+    for i in range(i_first, n_out):
+        g_end = G_k[i]
+        if g_end <= g_cur:
+            # a flat stretch of G: the wall jumps
+            d = sa_k[i] - sa_cur
+            if d != 0.0:
+                cut_mass, cut_m1 = _jump(p, h, d / w, tmp)
+                det += cut_mass
+                det_load -= w * cut_m1 - sa_cur * cut_mass
+                sa_cur = sa_k[i]
+                damp_left = n_damp
+        else:
+            v = (sa_k[i] - sa_cur) / (g_end - g_cur)
+            w_end = math.sqrt(1.0 + 4.0 * g_end)
+            lng = math.log(g_end / g_cur)
+            m = int(math.ceil(lng * n_steps_per_lng - 1e-9))
+            # the wall may travel at most 1/n_steps_per_width of the profile width per step
+            m_wall = int(math.ceil(abs(sa_k[i] - sa_cur) / math.sqrt(2.0 * g_cur)
+                                   * n_steps_per_width - 1e-9))
+            if m_wall > m:
+                m = m_wall
+            if m < 1:
+                m = 1
+            m *= refine
+            ratio = (g_end / g_cur) ** (1.0 / m)
+            g_a = g_cur
+            for step in range(m):
+                if damp_left > 0:
+                    n_sub = 2
+                    theta = 1.0
+                    damp_left -= 1
+                else:
+                    n_sub = 1
+                    theta = 0.5
+                rho = ratio ** (1.0 / n_sub)
+                for sub in range(n_sub):
+                    if step == m - 1 and sub == n_sub - 1:
+                        g_b = g_end
+                        w_b = w_end
+                        sa_b = sa_k[i]
+                    else:
+                        g_b = g_a * rho
+                        w_b = math.sqrt(1.0 + 4.0 * g_b)
+                        sa_b = sa_cur + v * (g_b - g_a)
+                    rr = w_b / w
+                    dt = (rr - 1.0) / (2.0 * theta + 2.0 * (1.0 - theta) * rr)
+                    drift = v * 0.5 * (w + w_b)
+                    diff = fitted_diffusion(drift * h)
+                    fw0, ff0 = _fluxes(p, h, drift, diff)
+                    theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs,
+                               scratch)
+                    fw1, ff1 = _fluxes(p, h, drift, diff)
+                    d_det = dt * ((1.0 - theta) * fw0 + theta * fw1)
+                    det += d_det
+                    det_load += (theta * sa_cur + (1.0 - theta) * sa_b) * d_det
+                    leak += dt * ((1.0 - theta) * ff0 + theta * ff1)
+                    w = w_b
+                    g_a = g_b
+                    sa_cur = sa_b
+            g_cur = g_end
+            sa_cur = sa_k[i]
+        a, m1 = _moments(p, h)
+        if not (math.isfinite(a) and math.isfinite(m1)):
+            return st.NONFINITE, leak
+        out_area[i] = a
+        out_load[i] = w * m1 - sa_cur * a
+        out_det_area[i] = det
+        out_det_load[i] = det_load
+    if leak > LEAK_TOL:
+        return st.FAR_LEAK, leak
+    return st.OK, leak
+
+
+@njit_serial
+def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out_det_load,
+              out_error):
+    """Contact area and load bookkeeping of one nominal pressure, in consistent units.
+
+    Parameters
+    ----------
+    G : (n_t,) float64 -- non-decreasing diffusion times, G[0] >= 0 (repeats = wall jumps).
+    sa : (n_t,) float64 -- detachment stress sigma_a at those times (wall at -sa), linear in
+        between, constant sa[0] before G[0].
+    sigma0 : float -- nominal stress (compressive > 0), same stress unit as sqrt(G).
+    rtol : float -- target relative accuracy of the area (sets the resolution).
+    n_damp : int -- Crank-Nicolson steps replaced by two implicit-Euler half steps after
+        each wall jump (Rannacher damping).
+    out_* : (n_t,) float64 -- area A/A0, load int sigma P, detached area, detached load
+        int sigma_a g dG, and an error estimate of the area.
+
+    Returns
+    -------
+    status : int -- 0 ok, see :mod:`persson_fast._kernels.status`.
+
+    Notes
+    -----
+    The whole computation is scale-free: units only need to be consistent
+    (stress and sqrt(G) in the same unit).
+    """
+    nt = G.shape[0]
+    if sa.shape[0] != nt or out_area.shape[0] != nt:
+        return st.BAD_INPUT
+    # wall position at G = 0 and survival of the jumps at G = 0
+    k0 = -1
+    for k in range(nt):
+        if G[k] == 0.0:
+            k0 = k
+        else:
+            break
+    sa0 = sa[0] if k0 < 0 else sa[k0]
+    separated = sigma0 + sa[0] <= 0.0
+    for k in range(k0 + 1):
+        if sigma0 + sa[k] <= 0.0:
+            separated = True
+    if separated:
+        for k in range(nt):
+            out_area[k] = 0.0
+            out_load[k] = 0.0
+            out_det_area[k] = 1.0
+            out_det_load[k] = -sigma0
+            out_error[k] = 0.0
+        return st.OK
+    y0 = sigma0 + sa0
+    # scaled schedule with a leading point at G = 0
+    G_k = np.empty(nt + 1)
+    sa_k = np.empty(nt + 1)
+    G_k[0] = 0.0
+    sa_k[0] = sa0 / y0
+    for k in range(nt):
+        G_k[k + 1] = G[k] / (y0 * y0)
+        sa_k[k + 1] = sa[k] / y0
+    sa0s = sa0 / y0
+    sig0s = sigma0 / y0
+    # first linear piece after G = 0
+    i_piece = 1
+    while i_piece <= nt and G_k[i_piece] == 0.0:
+        i_piece += 1
+    if i_piece <= nt:
+        piece_end = G_k[i_piece]
+        b_lin = (sa_k[i_piece] - sa0s) / piece_end
+        # extend over collinear pieces: the exact solution holds while the wall stays linear
+        k = i_piece + 1
+        while k <= nt and G_k[k] > G_k[k - 1]:
+            pred = sa0s + b_lin * G_k[k]
+            if abs(sa_k[k] - pred) > 1e-13 * (1.0 + abs(pred)):
+                break
+            piece_end = G_k[k]
+            k += 1
+    else:
+        piece_end = 0.0
+        b_lin = 0.0
+    g_s1 = min(C_START, piece_end)
+    g_s2 = _wall_far_start(G_k, sa_k, sa0s)
+    start_linear = g_s1 >= g_s2
+    g_start = g_s1 if start_linear else g_s2
+    # outputs up to the start come from the exact start family
+    i_first = 1
+    while i_first <= nt and G_k[i_first] <= g_start:
+        g = G_k[i_first]
+        if g == 0.0:
+            a = 1.0
+            m1 = 1.0
+        elif start_linear:
+            a, m1 = linear_wall_area_moment(1.0, b_lin, g)
+        else:
+            a = 1.0
+            m1 = 1.0 + sa_k[i_first] - sa0s
+        s_here = sa_k[i_first]
+        ld = m1 - s_here * a
+        out_area[i_first - 1] = a
+        out_load[i_first - 1] = ld * y0
+        out_det_area[i_first - 1] = 1.0 - a
+        out_det_load[i_first - 1] = (ld - sig0s) * y0
+        out_error[i_first - 1] = 0.0
+        i_first += 1
+    if i_first > nt:
+        return st.OK
+    if g_start <= 0.0:
+        return st.START_UNRESOLVED
+    # grid: domain, spacing (tolerance, start width, Peclet), step density
+    status = st.OK
+    scale = (1e-6 / rtol) ** 0.25
+    h_c = H_BASE / scale
+    if h_c > 0.25:
+        h_c = 0.25
+    nper = NPER_BASE * scale
+    if nper < 1.0:
+        nper = 1.0
+    nper_width = NPER_WIDTH * scale
+    w_s = math.sqrt(1.0 + 4.0 * g_start)
+    std_start = math.sqrt(2.0 * g_start) / w_s
+    if h_c > std_start / 6.0:
+        h_c = std_start / 6.0
+    xi_far = (1.0 + boundary_at(G_k, sa_k, g_start) - sa0s) / w_s
+    pe = 0.0
+    for k in range(i_first, nt + 1):
+        wk = math.sqrt(1.0 + 4.0 * G_k[k])
+        c = (1.0 + sa_k[k] - sa0s) / wk
+        if c > xi_far:
+            xi_far = c
+        dg = G_k[k] - G_k[k - 1]
+        if dg > 0.0:
+            v = abs(sa_k[k] - sa_k[k - 1]) / dg * wk
+            if v > pe:
+                pe = v
+    xi_max = xi_far + K_DOMAIN
+    if pe * h_c > PECLET_MAX:
+        h_c = PECLET_MAX / pe
+    n_c = int(math.ceil(xi_max / h_c))
+    if n_c > N_MAX:
+        n_c = N_MAX
+        status = st.GRID_CAP
+    if n_c < 16:
+        n_c = 16
+    h_c = xi_max / n_c
+    # two resolutions for Richardson extrapolation
+    n_f = 2 * n_c
+    nf1 = n_f + 1
+    p = np.empty(nf1)
+    tmp = np.empty(nf1)
+    lo = np.empty(nf1)
+    di = np.empty(nf1)
+    up = np.empty(nf1)
+    a_lo = np.empty(nf1)
+    a_di = np.empty(nf1)
+    a_up = np.empty(nf1)
+    rhs = np.empty(nf1)
+    scratch = np.empty(nf1)
+    ca = np.empty(nt + 1)
+    cl = np.empty(nt + 1)
+    cd = np.empty(nt + 1)
+    cdl = np.empty(nt + 1)
+    fa = np.empty(nt + 1)
+    fl = np.empty(nt + 1)
+    fd = np.empty(nt + 1)
+    fdl = np.empty(nt + 1)
+    s1, leak1 = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_c + 1,
+                      h_c, nper, nper_width, 1, n_damp, p[: n_c + 1], tmp[: n_c + 1], lo, di, up, a_lo, a_di,
+                      a_up, rhs, scratch, ca, cl, cd, cdl)
+    s2, leak2 = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_f + 1,
+                      0.5 * h_c, nper, nper_width, 2, n_damp, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs,
+                      scratch, fa, fl, fd, fdl)
+    if s1 != st.OK:
+        status = s1
+    if s2 != st.OK:
+        status = s2
+    for k in range(i_first, nt + 1):
+        a = (4.0 * fa[k] - ca[k]) / 3.0
+        out_area[k - 1] = a
+        out_load[k - 1] = (4.0 * fl[k] - cl[k]) / 3.0 * y0
+        out_det_area[k - 1] = (4.0 * fd[k] - cd[k]) / 3.0
+        out_det_load[k - 1] = (4.0 * fdl[k] - cdl[k]) / 3.0 * y0
+        out_error[k - 1] = abs(fa[k] - ca[k]) / 3.0
+        if not math.isfinite(a):
+            status = st.NONFINITE
+    return status

@@ -1,0 +1,21 @@
+"""Integer status codes returned by the kernels, one per pressure, and their meaning."""
+
+OK = 0
+NONFINITE = 1          # a non-finite value appeared; the result is not usable
+FAR_LEAK = 2           # mass reached the far end of the grid (domain too small)
+START_UNRESOLVED = 3   # the exact start profile is narrower than the grid can resolve
+GRID_CAP = 4           # the resolution needed (drift/Peclet or tolerance) exceeded the node cap
+BAD_INPUT = 5          # inconsistent arrays reached the kernel (a bug in the calling layer)
+NOT_CONVERGED = 6      # a fixed point (adhesion) did not reach its tolerance
+NEGATIVE_DENSITY = 7   # the stress distribution became markedly negative (ringing)
+
+STATUS_MESSAGES = {
+    OK: "ok",
+    NONFINITE: "non-finite value in the stress distribution",
+    FAR_LEAK: "stress distribution reached the far end of the grid",
+    START_UNRESOLVED: "exact start profile narrower than the grid resolves; accuracy not guaranteed",
+    GRID_CAP: "required resolution exceeds the node cap; accuracy not guaranteed",
+    BAD_INPUT: "inconsistent kernel input",
+    NOT_CONVERGED: "adhesion fixed point did not converge",
+    NEGATIVE_DENSITY: "stress distribution became negative beyond rounding",
+}
