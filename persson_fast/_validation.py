@@ -22,7 +22,7 @@ def _where(name: str, arr: np.ndarray, mask: np.ndarray) -> str:
         return f"{name} = {arr.item()!r}"
     idx = tuple(int(i) for i in np.argwhere(mask)[0])
     label = ",".join(str(i) for i in idx)
-    return f"{name}[{label}] = {arr[idx]!r}"
+    return f"{name}[{label}] = {arr[idx].item()!r}"
 
 
 def as_float_array(value, name: str, unit: str, *, ndim: tuple[int, ...] | None = None) -> np.ndarray:

@@ -47,12 +47,13 @@ from .tridiag import fitted_diffusion, theta_step
 C_START = 0.25        # latest start G_s = C_START * y0^2: start std = 0.71 y0
 K_WALL_FAR = 7.0      # a free Gaussian is exact while the wall stays 7 std away (2 Phi(-7) = 3e-12)
 K_DOMAIN = 6.5        # far end of the grid beyond the farthest profile centre, in xi units
-H_BASE = 0.07         # coarse node spacing in xi at rtol = 1e-6
+H_BASE = 0.06         # coarse node spacing in xi at rtol = 1e-6
 NPER_BASE = 5.0       # coarse steps per unit of ln G at rtol = 1e-6 (11.5 per decade)
 NPER_WIDTH = 40.0     # coarse steps per profile width sqrt(2G) travelled by the wall
-PECLET_MAX = 4.0      # largest cell Peclet number of the wall drift (exponentially fitted)
+PECLET_MAX = 0.25      # largest cell Peclet number of the wall drift (exponentially fitted)
 N_MAX = 20000         # node cap of the coarse grid
 LEAK_TOL = 1e-10      # far-field leakage above this is flagged
+K_LAYER = 1.0         # after a cut, the wall layer is smoothed over a diffusion time K_LAYER h^2
 GAUSS3_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
 GAUSS3_W = (5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0)
 
@@ -197,8 +198,13 @@ def _cut_integrals(p, h, c):
 def _jump(p, h, d_xi, tmp):
     """Shift the profile by d_xi (wall jump), cutting what falls behind the wall.
 
-    Returns (cut_mass, cut_m1): the removed mass and its first moment in the old xi.
-    The retained area and first moment are kept exact by a moment projection.
+    Returns (cut_mass, cut_m1, layer_mass): the mass cut at once and its first moment in the
+    old xi, and the mass that then drains through the new wall from the discontinuity the cut
+    leaves there. That discontinuity is replaced by the exact short-time solution of the
+    half-line problem, p(xi) erf(xi / (2 sqrt(tau))), tau = K_LAYER h^2, which conserves the
+    first moment of y (as diffusion against an absorbing wall does); its O(h^2) error is
+    removed by the Richardson step because tau scales with h^2. The retained area and first
+    moment are kept exact by a moment projection.
     """
     n = p.shape[0] - 1
     a_old, m_old = _moments(p, h)
@@ -208,6 +214,7 @@ def _jump(p, h, d_xi, tmp):
         cut_mass, cut_m1 = _cut_integrals(p, h, -d_xi)
         if cut_mass > a_old:
             cut_mass = a_old
+    tmp_value_at_wall = _interp_cubic(p, h, -d_xi) if d_xi < 0.0 else 0.0
     tmp[0] = 0.0
     tmp[n] = 0.0
     for j in range(1, n):
@@ -219,9 +226,39 @@ def _jump(p, h, d_xi, tmp):
     if t0 <= 0.0:
         for j in range(n + 1):
             p[j] = 0.0
-        return a_old, m_old
+        return a_old, m_old, 0.0
+    layer = 0.0
+    if d_xi < 0.0:
+        # value at the new wall, then the exact drain of the half-line problem over tau:
+        # p(0+) * 2 sqrt(tau / pi) (the linear part of the profile drains nothing)
+        p_wall = tmp_value_at_wall
+        two_sqrt_tau = 2.0 * math.sqrt(K_LAYER) * h
+        for j in range(1, n):
+            p[j] *= math.erf(j * h / two_sqrt_tau)
+        layer = p_wall * two_sqrt_tau / math.sqrt(math.pi)
+        if layer > t0:
+            layer = t0
+        # the node sum of a layer only a few h wide misses the Euler-Maclaurin term
+        # (h^2/12) f'(0), f'(0) = p_wall / sqrt(pi tau): an O(h) term, so the discrete
+        # target carries it explicitly
+        layer += h * h / 12.0 * 2.0 * p_wall / (math.sqrt(math.pi) * two_sqrt_tau)
+        if layer > t0:
+            layer = t0
+        t0 -= layer
     _project_moments(p, h, t0, t1)
-    return cut_mass, cut_m1
+    return cut_mass, cut_m1, layer
+
+
+@njit_serial
+def _stretch(p, h, ratio, tmp):
+    """Re-express the profile on the grid of a larger width: p'(xi) = ratio p(ratio xi)."""
+    n = p.shape[0] - 1
+    tmp[0] = 0.0
+    tmp[n] = 0.0
+    for j in range(1, n):
+        tmp[j] = ratio * _interp_cubic(p, h, ratio * j * h)
+    for j in range(n + 1):
+        p[j] = tmp[j]
 
 
 @njit_serial
@@ -270,6 +307,9 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     load_s = m1_s - sa_s * a_s
     det_load = load_s - sigma0
     leak = 0.0
+    det_c = 0.0
+    det_load_c = 0.0
+    jumped = False
     damp_left = 0
     g_cur = g_start
     sa_cur = sa_s
@@ -280,10 +320,36 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
             # a flat stretch of G: the wall jumps
             d = sa_k[i] - sa_cur
             if d != 0.0:
-                cut_mass, cut_m1 = _jump(p, h, d / w, tmp)
+                jumped = True
+                cut_mass, cut_m1, layer = _jump(p, h, d / w, tmp)
                 det += cut_mass
                 det_load -= w * cut_m1 - sa_cur * cut_mass
                 sa_cur = sa_k[i]
+                if layer > 0.0:
+                    # the layer drained during tau = K_LAYER h^2 of log-time: advance the clock
+                    g_next = G_k[i + 1] if i + 1 < n_out else g_cur
+                    v_next = 0.0
+                    w_new = w * math.exp(2.0 * K_LAYER * h * h)
+                    g_new = 0.25 * (w_new * w_new - 1.0)
+                    if g_next > g_cur:
+                        v_next = (sa_k[i + 1] - sa_cur) / (g_next - g_cur)
+                        limit = g_cur + 0.25 * (g_next - g_cur)
+                        if g_new > limit:
+                            g_new = limit
+                            w_new = math.sqrt(1.0 + 4.0 * g_new)
+                    else:
+                        g_new = g_cur
+                        w_new = w
+                    a_l, m_l = _moments(p, h)
+                    dg = g_new - g_cur
+                    target_m1y = w * m_l + v_next * a_l * dg
+                    _stretch(p, h, w_new / w, tmp)
+                    _project_moments(p, h, a_l, target_m1y / w_new)
+                    sa_cur = sa_cur + v_next * dg
+                    det += layer
+                    det_load += sa_cur * layer
+                    g_cur = g_new
+                    w = w_new
                 damp_left = n_damp
         else:
             v = (sa_k[i] - sa_cur) / (g_end - g_cur)
@@ -321,14 +387,24 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                     rr = w_b / w
                     dt = (rr - 1.0) / (2.0 * theta + 2.0 * (1.0 - theta) * rr)
                     drift = v * 0.5 * (w + w_b)
-                    diff = fitted_diffusion(drift * h)
+                    # fit only a wall moving into the distribution (v < 0): then 2 xi and
+                    # -w v add up and the layer at the wall is real; a receding wall leaves no
+                    # layer and fitting would only add diffusion where the mass sits
+                    diff = fitted_diffusion(drift * h) if v < 0.0 else 1.0
                     fw0, ff0 = _fluxes(p, h, drift, diff)
                     theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs,
                                scratch)
                     fw1, ff1 = _fluxes(p, h, drift, diff)
                     d_det = dt * ((1.0 - theta) * fw0 + theta * fw1)
-                    det += d_det
-                    det_load += (theta * sa_cur + (1.0 - theta) * sa_b) * d_det
+                    # compensated (Kahan) sums: thousands of tiny increments
+                    yk = d_det - det_c
+                    tk = det + yk
+                    det_c = (tk - det) - yk
+                    det = tk
+                    yk = (theta * sa_cur + (1.0 - theta) * sa_b) * d_det - det_load_c
+                    tk = det_load + yk
+                    det_load_c = (tk - det_load) - yk
+                    det_load = tk
                     leak += dt * ((1.0 - theta) * ff0 + theta * ff1)
                     w = w_b
                     g_a = g_b
@@ -344,6 +420,8 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
         out_det_load[i] = det_load
     if leak > LEAK_TOL:
         return st.FAR_LEAK, leak
+    if jumped:
+        return st.WALL_JUMP, leak
     return st.OK, leak
 
 
@@ -475,8 +553,9 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
         if c > xi_far:
             xi_far = c
         dg = G_k[k] - G_k[k - 1]
-        if dg > 0.0:
-            v = abs(sa_k[k] - sa_k[k - 1]) / dg * wk
+        if dg > 0.0 and sa_k[k] < sa_k[k - 1]:
+            # a wall moving into the distribution builds a layer of width 1/(w |v|)
+            v = (sa_k[k - 1] - sa_k[k]) / dg * wk
             if v > pe:
                 pe = v
     xi_max = xi_far + K_DOMAIN

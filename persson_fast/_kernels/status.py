@@ -8,6 +8,7 @@ GRID_CAP = 4           # the resolution needed (drift/Peclet or tolerance) excee
 BAD_INPUT = 5          # inconsistent arrays reached the kernel (a bug in the calling layer)
 NOT_CONVERGED = 6      # a fixed point (adhesion) did not reach its tolerance
 NEGATIVE_DENSITY = 7   # the stress distribution became markedly negative (ringing)
+WALL_JUMP = 8          # the wall jumped (flat G): accuracy after a jump is below the scheme's order
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -18,4 +19,6 @@ STATUS_MESSAGES = {
     BAD_INPUT: "inconsistent kernel input",
     NOT_CONVERGED: "adhesion fixed point did not converge",
     NEGATIVE_DENSITY: "stress distribution became negative beyond rounding",
+    WALL_JUMP: ("the wall jumped over a flat stretch of G: the error after a jump converges at "
+                "first to second order, not fourth; rtol is not guaranteed (compare a smaller rtol)"),
 }
