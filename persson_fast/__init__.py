@@ -1,0 +1,49 @@
+"""persson_fast: Persson's contact-mechanics theory, fast and exact.
+
+The stress distribution P(sigma, zeta) obeys a diffusion equation in magnification with an
+absorbing wall at -sigma_a(zeta); the real contact area is A(zeta1)/A0. See the README for the
+conventions (SI units, Persson's isotropic PSD convention).
+"""
+from .analytic import (
+    contact_area_no_adhesion,
+    images_area,
+    images_density,
+    images_moments,
+    linear_boundary_area,
+    linear_boundary_density,
+    linear_boundary_detachment_rate,
+    linear_boundary_load,
+    plastic_area,
+)
+from .api import default_zeta, solve_contact, solve_diffusion
+from .methods import METHODS
+from .results import ContactResult, DiffusionResult
+from .surfaces import CapillaryWaves, SelfAffine, Surface, TabulatedPSD, seed_scene
+from .sweep import warmup
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "CapillaryWaves",
+    "ContactResult",
+    "DiffusionResult",
+    "METHODS",
+    "SelfAffine",
+    "Surface",
+    "TabulatedPSD",
+    "contact_area_no_adhesion",
+    "default_zeta",
+    "images_area",
+    "images_density",
+    "images_moments",
+    "linear_boundary_area",
+    "linear_boundary_density",
+    "linear_boundary_detachment_rate",
+    "linear_boundary_load",
+    "plastic_area",
+    "seed_scene",
+    "solve_contact",
+    "solve_diffusion",
+    "warmup",
+    "__version__",
+]

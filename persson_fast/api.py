@@ -1,0 +1,310 @@
+"""Public entry points: validate, pick a method, call the sweep, wrap the result."""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from . import analytic
+from ._validation import (
+    as_float_array,
+    check_finite,
+    check_nondecreasing,
+    check_nonnegative,
+    check_positive,
+)
+from .methods import check_method
+from .results import ContactResult, DiffusionResult, summarize_status
+from .sweep import run_sweep
+
+__all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
+
+#: default number of magnifications per decade of the profile grid of solve_contact
+ZETA_PER_DECADE = 8
+
+
+def _check_rtol(rtol) -> float:
+    arr = as_float_array(rtol, "rtol", "-", ndim=(0,))
+    check_finite(arr, "rtol", "-")
+    value = float(arr)
+    if not 1e-12 <= value <= 0.1:
+        raise ValueError(f"rtol must lie in [1e-12, 0.1] [-]; got rtol = {value!r}")
+    return value
+
+
+def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
+    p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))
+    check_finite(p, "pressure", "Pa")
+    if not allow_negative:
+        bad = p < 0
+        if np.any(bad):
+            arr = np.atleast_1d(p)
+            i = int(np.argmax(np.atleast_1d(bad)))
+            label = "pressure" if p.ndim == 0 else f"pressure[{i}]"
+            raise ValueError(
+                f"pressure must be >= 0 [Pa] without adhesion (a tensile nominal stress "
+                f"separates the surfaces); got {label} = {arr[i]!r}"
+            )
+    return np.atleast_1d(p).astype(np.float64)
+
+
+def _is_linear(G: np.ndarray, rows: np.ndarray) -> bool:
+    """True when every wall row is exactly a + b G (no jumps)."""
+    if G.size < 2:
+        return True
+    if np.any(np.diff(G) == 0) and np.any(np.diff(rows, axis=1)[:, np.diff(G) == 0] != 0):
+        return False
+    span = G[-1] - G[0]
+    if span == 0:
+        return bool(np.all(rows == rows[:, :1]))
+    b = (rows[:, -1] - rows[:, 0]) / span
+    pred = rows[:, :1] + b[:, None] * (G[None, :] - G[0])
+    return bool(np.all(np.abs(rows - pred) <= 1e-12 * (1.0 + np.abs(pred))))
+
+
+def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=2,
+                    parallel=None) -> DiffusionResult:
+    """Solve the stress diffusion with a prescribed absorbing wall.
+
+    Parameters
+    ----------
+    G : array_like, shape (n_t,)
+        Non-decreasing diffusion times, G[0] >= 0; a repeated value is a flat stretch where the
+        wall may jump. [Pa^2]
+    pressure : float or array_like, shape (n_p,)
+        Nominal stress sigma0 (compressive > 0). Negative values need a wall with
+        sigma_a > 0; at or below -sigma_a(0) the surfaces are separated (A = 0). [Pa]
+    sigma_a : float or array_like, shape (n_t,) or (n_p, n_t)
+        Detachment stress: the wall sits at -sigma_a(G), linear in G between the given points
+        and equal to sigma_a[0] before G[0]. [Pa]
+    method : {"cn", "analytic", "auto"}
+        "analytic" needs a wall linear in G (zero included); "auto" takes it where it
+        applies and "cn" otherwise.
+    rtol : float
+        Target relative accuracy of the area, in [1e-12, 0.1]. [-]
+    n_damp : int
+        Crank-Nicolson steps replaced by implicit-Euler half steps after a wall jump
+        (Rannacher damping), >= 0.
+    parallel : bool or None
+        Spread pressures over threads (None: when there are >= 4 pressures).
+
+    Returns
+    -------
+    DiffusionResult
+
+    Notes
+    -----
+    dP/dG = d2P/dsigma2 with P(sigma, 0) = delta(sigma - sigma0) and P(-sigma_a, G) = 0
+    (seed Eqs. 4, 7 in diffusion time G). The "cn" scheme is described in
+    :mod:`persson_fast._kernels.diffusion`; its order after extrapolation is 4 for smooth
+    walls.
+    """
+    method = check_method(method)
+    rtol = _check_rtol(rtol)
+    G = as_float_array(G, "G", "Pa^2", ndim=(1,))
+    if G.size == 0:
+        raise ValueError("G must hold at least one diffusion time [Pa^2]; got an empty array")
+    check_nonnegative(G, "G", "Pa^2")
+    check_nondecreasing(G, "G", "Pa^2")
+    sa = as_float_array(sigma_a, "sigma_a", "Pa", ndim=(0, 1, 2))
+    check_finite(sa, "sigma_a", "Pa")
+    has_wall = bool(np.any(sa != 0))
+    p = _check_pressure(pressure, allow_negative=has_wall)
+    n_p, n_t = p.size, G.size
+    if sa.ndim == 0:
+        rows = np.full((n_p, n_t), float(sa))
+    elif sa.ndim == 1:
+        if sa.size != n_t:
+            raise ValueError(f"sigma_a must have the length of G ({n_t}) [Pa]; got shape {sa.shape}")
+        rows = np.broadcast_to(sa, (n_p, n_t)).copy()
+    else:
+        if sa.shape != (n_p, n_t):
+            raise ValueError(
+                f"sigma_a must have shape (n_p, n_t) = ({n_p}, {n_t}) [Pa]; got shape {sa.shape}"
+            )
+        rows = sa.copy()
+    if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
+        raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
+    linear = _is_linear(G, rows)
+    if method == "analytic" and not linear:
+        raise ValueError(
+            "method 'analytic' needs a wall linear in G (sigma_a = a + b G, no jumps); "
+            "use method='cn' or 'auto' for this sigma_a"
+        )
+    use = "analytic" if (method == "analytic" or (method == "auto" and linear)) else "cn"
+    t0 = time.perf_counter()
+    if use == "analytic":
+        out = _analytic_linear(G, rows, p)
+        timings = {"solve": time.perf_counter() - t0}
+    else:
+        out, timings = run_sweep(G, rows, p, rtol=rtol, n_damp=int(n_damp), parallel=parallel)
+    success, message = summarize_status(out["status"])
+    return DiffusionResult(
+        G=G, pressure=p, sigma_a=rows, area=out["area"], load=out["load"],
+        detached_area=out["detached_area"], detached_load=out["detached_load"],
+        error_estimate=out["error_estimate"], method=use, status=out["status"],
+        success=success, message=message, timings=timings,
+    )
+
+
+def _analytic_linear(G, rows, p):
+    """Closed forms for walls a + b G (images when a = b = 0)."""
+    n_p, n_t = rows.shape
+    area = np.zeros((n_p, n_t))
+    load = np.zeros((n_p, n_t))
+    for k in range(n_p):
+        a = rows[k, 0]
+        span = G[-1] - G[0]
+        b = (rows[k, -1] - rows[k, 0]) / span if span > 0 else 0.0
+        a0 = a - b * G[0]          # wall at G = 0 (constant before G[0] only if b == 0)
+        if span > 0 and G[0] > 0 and b != 0:
+            # the wall is held at sigma_a[0] before G[0]: not a single linear law
+            raise ValueError(
+                "method 'analytic' needs the linear wall to start at G = 0 (G[0] = 0) when it "
+                "moves; use method='cn'"
+            )
+        if p[k] + a0 <= 0:
+            area[k] = 0.0
+            load[k] = 0.0
+            continue
+        if a0 == 0 and b == 0:
+            area[k] = analytic.images_area(p[k], G)
+            load[k] = np.where(area[k] > 0, p[k], 0.0)
+        else:
+            area[k] = analytic.linear_boundary_area(p[k], G, a0, b)
+            load[k] = analytic.linear_boundary_load(p[k], G, a0, b)
+    return {
+        "area": area, "load": load, "detached_area": 1.0 - area,
+        "detached_load": load - p[:, None], "error_estimate": np.zeros((n_p, n_t)),
+        "status": np.zeros(n_p, dtype=np.int64),
+    }
+
+
+def default_zeta(surface, per_decade: int = ZETA_PER_DECADE) -> np.ndarray:
+    """Magnifications 1 ... zeta1 log-spaced, with the surface's breakpoints included. [-]"""
+    zeta1 = surface.q1 / surface.q0
+    n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
+    z = np.geomspace(1.0, zeta1, n)
+    bp = np.asarray(surface.breakpoints(), dtype=float) / surface.q0
+    z = np.unique(np.concatenate([z, bp[(bp >= 1.0) & (bp <= zeta1)]]))
+    z[0], z[-1] = 1.0, zeta1
+    return z
+
+
+def _check_zeta(zeta, surface) -> np.ndarray:
+    if zeta is None:
+        return default_zeta(surface)
+    z = as_float_array(zeta, "zeta", "-", ndim=(1,))
+    check_finite(z, "zeta", "-")
+    zeta1 = surface.q1 / surface.q0
+    if z.size < 1 or z[0] != 1.0:
+        raise ValueError(f"zeta must start at 1 [-]; got zeta[0] = {z[0] if z.size else None!r}")
+    bad = (z < 1.0) | (z > zeta1 * (1 + 1e-12))
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ValueError(f"zeta must lie in [1, q1/q0 = {zeta1!r}] [-]; got zeta[{i}] = {z[i]!r}")
+    if np.any(np.diff(z) <= 0):
+        i = int(np.argmax(np.diff(z) <= 0))
+        raise ValueError(f"zeta must be increasing [-]; got zeta[{i}] = {z[i]!r} >= zeta[{i + 1}] = {z[i + 1]!r}")
+    return z
+
+
+def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_correction=None,
+                  detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None,
+                  parallel=None) -> ContactResult:
+    """Relative real contact area of a rough surface at many nominal pressures.
+
+    Parameters
+    ----------
+    surface : Surface
+        The roughness (e.g. :class:`CapillaryWaves`, :class:`SelfAffine`, :class:`TabulatedPSD`).
+    pressure : float or array_like, shape (n_p,)
+        Nominal pressure p_nom = F_N / A0, >= 0 without adhesion. [Pa]
+    e_star : float
+        Effective modulus E* = E / (1 - nu^2) > 0. [Pa]
+    work_of_adhesion : float
+        Delta gamma >= 0. [J/m^2]  (0: no adhesion.)
+    energy_correction : float or None
+        gamma_S of S = gamma_S + (1 - gamma_S) P(q)^2 (adhesion only); None: S = 1.
+    detachment_prefactor : float
+        beta of seed Eq. 8 (default 1/sqrt 2). [-]
+    method : {"auto", "analytic", "cn"}
+    rtol : float
+        Target relative accuracy of the area. [-]
+    zeta : array_like or None
+        Magnifications of the returned profiles, starting at 1 (default: 8 per decade plus the
+        spectrum's breakpoints). [-]
+    parallel : bool or None
+        Spread pressures over threads (None: when there are >= 4 pressures).
+
+    Returns
+    -------
+    ContactResult
+
+    Notes
+    -----
+    Without adhesion the whole surface enters through G(zeta) (seed Eqs. 4-7); the area is
+    erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the
+    diffusion numerically (the same kernel the adhesive problem uses).
+    """
+    method = check_method(method)
+    rtol = _check_rtol(rtol)
+    e = as_float_array(e_star, "e_star", "Pa", ndim=(0,))
+    check_positive(e, "e_star", "Pa")
+    e = float(e)
+    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
+    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
+    dg = float(dg)
+    beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
+    check_positive(beta, "detachment_prefactor", "-")
+    if energy_correction is not None:
+        gs = as_float_array(energy_correction, "energy_correction", "-", ndim=(0,))
+        check_finite(gs, "energy_correction", "-")
+        if not 0.0 <= float(gs) <= 1.0:
+            raise ValueError(
+                f"energy_correction must lie in [0, 1] [-]; got energy_correction = {float(gs)!r}"
+            )
+    for attr in ("q0", "q1", "diffusion_time", "breakpoints"):
+        if not hasattr(surface, attr):
+            raise ValueError(f"surface must be a persson_fast surface model; {type(surface).__name__} has no {attr!r}")
+    z = _check_zeta(zeta, surface)
+    if dg > 0:
+        from .adhesion import solve_adhesive_contact
+
+        return solve_adhesive_contact(surface, pressure, z, e_star=e, work_of_adhesion=dg,
+                                      energy_correction=energy_correction,
+                                      detachment_prefactor=float(beta), method=method,
+                                      rtol=rtol, parallel=parallel)
+    p = _check_pressure(pressure, allow_negative=False)
+    G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
+    G[0] = 0.0
+    use = "cn" if method == "cn" else "analytic"
+    t0 = time.perf_counter()
+    if use == "analytic":
+        area_z = analytic.images_area(p[:, None], G[None, :])
+        area_z = np.broadcast_to(area_z, (p.size, z.size)).astype(float)
+        load = np.where(area_z[:, -1] > 0, p, 0.0)
+        det_a = 1.0 - area_z[:, -1]
+        det_l = load - p
+        err = np.zeros(p.size)
+        status = np.zeros(p.size, dtype=np.int64)
+        timings = {"solve": time.perf_counter() - t0}
+    else:
+        out, timings = run_sweep(G, np.zeros((p.size, z.size)), p, rtol=rtol, parallel=parallel)
+        area_z = out["area"]
+        load = out["load"][:, -1]
+        det_a = out["detached_area"][:, -1]
+        det_l = out["detached_load"][:, -1]
+        err = out["error_estimate"][:, -1]
+        status = out["status"]
+    area = area_z[:, -1].copy()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean_p = np.where(area > 0, load / np.where(area > 0, area, 1.0), np.nan)
+    success, message = summarize_status(status)
+    zeros = np.zeros((p.size, z.size))
+    return ContactResult(
+        pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=zeros, gamma_eff=zeros.copy(),
+        load=load, mean_contact_pressure=mean_p, detached_area=det_a, detached_load=det_l,
+        error_estimate=err, method=use, status=status, success=success, message=message,
+        timings=timings,
+    )

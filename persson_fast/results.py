@@ -1,0 +1,96 @@
+"""Frozen result objects (arrays + status/message + timings)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._kernels.status import STATUS_MESSAGES
+
+
+def summarize_status(status: np.ndarray) -> tuple[bool, str]:
+    """(success, message) from per-pressure integer status codes."""
+    status = np.asarray(status)
+    if status.size == 0 or np.all(status == 0):
+        return True, "ok"
+    parts = []
+    for code in np.unique(status[status != 0]):
+        idx = np.flatnonzero(status == code)
+        shown = ", ".join(str(i) for i in idx[:5]) + (", ..." if idx.size > 5 else "")
+        parts.append(f"{STATUS_MESSAGES.get(int(code), 'unknown status')} (code {int(code)}) "
+                     f"at pressure index {shown}")
+    return False, "; ".join(parts)
+
+
+@dataclass(frozen=True)
+class DiffusionResult:
+    """Result of :func:`persson_fast.solve_diffusion`.
+
+    Attributes
+    ----------
+    G : (n_t,) -- diffusion times. [Pa^2]
+    pressure : (n_p,) -- nominal pressures sigma0. [Pa]
+    sigma_a : (n_p, n_t) -- detachment stress of the wall at -sigma_a. [Pa]
+    area : (n_p, n_t) -- relative contact area A(G)/A0. [-]
+    load : (n_p, n_t) -- load carried in contact, int sigma P dsigma. [Pa]
+    detached_area : (n_p, n_t) -- area detached through the wall (A + detached = 1). [-]
+    detached_load : (n_p, n_t) -- int sigma_a g dG (load = pressure + detached_load). [Pa]
+    error_estimate : (n_p, n_t) -- estimate of the absolute error of ``area``. [-]
+    method : str -- the method that produced the numbers.
+    status : (n_p,) int -- 0 ok, otherwise see ``message``.
+    success : bool, message : str
+    timings : dict -- seconds spent (``solve``; ``compile`` when this call compiled).
+    """
+
+    G: np.ndarray
+    pressure: np.ndarray
+    sigma_a: np.ndarray
+    area: np.ndarray
+    load: np.ndarray
+    detached_area: np.ndarray
+    detached_load: np.ndarray
+    error_estimate: np.ndarray
+    method: str
+    status: np.ndarray
+    success: bool
+    message: str
+    timings: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ContactResult:
+    """Result of :func:`persson_fast.solve_contact` (one scene, many pressures).
+
+    Attributes
+    ----------
+    pressure : (n_p,) -- nominal pressures. [Pa]
+    area : (n_p,) -- A(zeta1)/A0, the relative real contact area. [-]
+    zeta : (n_z,) -- magnifications of the profiles; zeta[0] == 1. [-]
+    G : (n_z,) -- diffusion time G(zeta). [Pa^2]
+    area_zeta : (n_p, n_z) -- A(zeta)/A0. [-]
+    sigma_a : (n_p, n_z) -- detachment stress sigma_a(zeta) (zeros without adhesion). [Pa]
+    gamma_eff : (n_p, n_z) -- effective interfacial energy (zeros without adhesion). [J/m^2]
+    load : (n_p,) -- load carried in contact at zeta1. [Pa]
+    mean_contact_pressure : (n_p,) -- load / area, mean stress in the contact (nan where A = 0). [Pa]
+    detached_area, detached_load : (n_p,) -- bookkeeping at zeta1. [-], [Pa]
+    error_estimate : (n_p,) -- estimate of the absolute error of ``area``. [-]
+    method : str, status : (n_p,) int, success : bool, message : str, timings : dict
+    """
+
+    pressure: np.ndarray
+    area: np.ndarray
+    zeta: np.ndarray
+    G: np.ndarray
+    area_zeta: np.ndarray
+    sigma_a: np.ndarray
+    gamma_eff: np.ndarray
+    load: np.ndarray
+    mean_contact_pressure: np.ndarray
+    detached_area: np.ndarray
+    detached_load: np.ndarray
+    error_estimate: np.ndarray
+    method: str
+    status: np.ndarray
+    success: bool
+    message: str
+    timings: dict = field(default_factory=dict)
