@@ -1,0 +1,477 @@
+"""The ``persson-fast`` command.
+
+Subcommands
+-----------
+figure2
+    The seed paper's PMMA scene (THEORY.md §7): A/A0 against the nominal pressure 0-100 MPa,
+    without adhesion and, once adhesion is available, with Delta gamma = 0.06 J/m^2. Writes a CSV
+    file and a PNG plot.
+contact
+    A user's own scene (capillary waves or a self-affine spectrum) from flags and/or a TOML file.
+info
+    Versions, threads and the time to compile (or load from the cache) the kernels.
+
+Running ``persson-fast`` with no subcommand runs ``figure2``. A ValueError raised by the package
+(an invalid input) is printed as ``error: <message>`` and the exit code is 2.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+__all__ = ["main", "build_parser"]
+
+#: Young's modulus of PMMA used by the seed paper. [Pa]
+SEED_YOUNG_MODULUS = 2.9e9
+#: Poisson ratio assumed for PMMA (the seed paper gives none). [-]
+SEED_POISSON_DEFAULT = 0.3
+#: work of adhesion of the seed's adhesive curve. [J/m^2]
+SEED_WORK_OF_ADHESION = 0.06
+#: largest nominal pressure of the seed's Fig. 2. [Pa]
+SEED_P_MAX = 100e6
+
+_COMMANDS = ("figure2", "contact", "info")
+
+#: surface parameters per model: (TOML key, attribute of the parsed flags, constructor keyword)
+_SURFACE_KEYS = {
+    "capillary": ("temperature", "surface_tension", "q_c", "q0", "q1", "density", "gravity"),
+    "self-affine": ("hurst", "q0", "q1", "q_r", "h_rms", "slope_rms", "C0"),
+}
+_REQUIRED = {
+    "capillary": ("temperature", "surface_tension", "q_c", "q0", "q1"),
+    "self-affine": ("hurst", "q0", "q1"),
+}
+_FLAG_OF = {
+    "temperature": "--temperature", "surface_tension": "--surface-tension", "q_c": "--q-c",
+    "q0": "--q0", "q1": "--q1", "density": "--density", "gravity": "--gravity",
+    "hurst": "--hurst", "q_r": "--q-r", "h_rms": "--h-rms", "slope_rms": "--slope-rms",
+    "C0": "--c0",
+}
+
+
+class CommandError(ValueError):
+    """An invalid command line or configuration file (printed like a package ValueError)."""
+
+
+# --------------------------------------------------------------------------------------------
+# parser
+# --------------------------------------------------------------------------------------------
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser of ``persson-fast`` (exposed for documentation and tests)."""
+    from . import __version__
+
+    parser = argparse.ArgumentParser(
+        prog="persson-fast",
+        description="Persson contact mechanics: real contact area of rough surfaces.",
+        epilog="Without a subcommand, 'figure2' is run.",
+    )
+    parser.add_argument("--version", action="version", version=f"persson_fast {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="{figure2,contact,info}")
+
+    f2 = sub.add_parser(
+        "figure2", help="the seed paper's PMMA scene: A/A0 against pressure (its Fig. 2)",
+        description="Relative contact area of the seed paper's PMMA scene (frozen capillary "
+                    "waves, E = 2.9 GPa) against the nominal pressure 0-100 MPa.",
+    )
+    f2.add_argument("--out", default="persson_fast_out", metavar="DIR",
+                    help="output folder (default: %(default)s)")
+    f2.add_argument("--points", type=int, default=101, metavar="N",
+                    help="number of pressures from 0 to 100 MPa (default: %(default)s)")
+    f2.add_argument("--poisson", type=float, default=SEED_POISSON_DEFAULT, metavar="NU",
+                    help="Poisson ratio of PMMA, not given by the paper (default: %(default)s)")
+    f2.add_argument("--rtol", type=float, default=1e-6, metavar="R",
+                    help="target relative accuracy (default: %(default)s)")
+    f2.add_argument("--no-plot", action="store_true", help="do not write figure2.png")
+
+    ct = sub.add_parser(
+        "contact", help="contact area of your own scene",
+        description="Relative contact area of a capillary-wave or self-affine surface. A TOML "
+                    "file (--config) may give the same settings; flags override it.",
+    )
+    ct.add_argument("--config", metavar="FILE.toml",
+                    help="TOML file: a [surface] table with model = 'capillary' | 'self-affine' "
+                         "and its parameters; top-level e_star, pressures (or pressure_range = "
+                         "[pmin, pmax, n]), method, rtol, csv")
+    ct.add_argument("--surface", choices=tuple(_SURFACE_KEYS), help="surface model")
+    g = ct.add_argument_group("capillary-wave surface")
+    g.add_argument("--temperature", type=float, metavar="T", help="temperature [K]")
+    g.add_argument("--surface-tension", type=float, metavar="GAMMA", help="surface tension [J/m^2]")
+    g.add_argument("--q-c", type=float, metavar="QC", help="crossover wavevector [1/m]")
+    g.add_argument("--density", type=float, metavar="RHO", help="mass density [kg/m^3] (default 0)")
+    g.add_argument("--gravity", type=float, metavar="G", help="gravity [m/s^2] (default 9.81)")
+    g = ct.add_argument_group("self-affine surface")
+    g.add_argument("--hurst", type=float, metavar="H", help="Hurst exponent [-]")
+    g.add_argument("--q-r", type=float, metavar="QR", help="roll-off wavevector [1/m]")
+    g.add_argument("--h-rms", type=float, metavar="H", help="rms height [m]")
+    g.add_argument("--slope-rms", type=float, metavar="S", help="rms slope [-]")
+    g.add_argument("--c0", type=float, metavar="C0", help="plateau of the spectrum [m^4]")
+    g = ct.add_argument_group("both models")
+    g.add_argument("--q0", type=float, metavar="Q0", help="smallest wavevector [1/m]")
+    g.add_argument("--q1", type=float, metavar="Q1", help="largest wavevector [1/m]")
+    ct.add_argument("--e-star", type=float, metavar="E", help="effective modulus E/(1-nu^2) [Pa]")
+    pr = ct.add_mutually_exclusive_group()
+    pr.add_argument("--pressure", type=float, nargs="+", metavar="P",
+                    help="nominal pressures [Pa]")
+    pr.add_argument("--pressure-range", type=float, nargs=3, metavar=("PMIN", "PMAX", "N"),
+                    help="N pressures from PMIN to PMAX [Pa], evenly spaced")
+    ct.add_argument("--method", choices=("auto", "cn", "analytic"),
+                    help="solution method (default: auto)")
+    ct.add_argument("--rtol", type=float, metavar="R",
+                    help="target relative accuracy (default 1e-6)")
+    ct.add_argument("--csv", metavar="FILE", help="also write the table to this CSV file")
+
+    sub.add_parser("info", help="versions, threads and kernel compile time",
+                   description="Print versions and threads, then compile (or load from the "
+                               "cache) the kernels and print the seconds it took.")
+    return parser
+
+
+# --------------------------------------------------------------------------------------------
+# figure2
+# --------------------------------------------------------------------------------------------
+
+
+def _cmd_figure2(args) -> int:
+    import persson_fast as pf
+
+    nu = float(args.poisson)
+    if not (math.isfinite(nu) and -1.0 < nu <= 0.5):
+        raise CommandError(f"--poisson must lie in (-1, 0.5] [-]; got {nu!r}")
+    if args.points < 2:
+        raise CommandError(f"--points must be >= 2; got {args.points}")
+    e_star = SEED_YOUNG_MODULUS / (1.0 - nu * nu)
+    surface = pf.seed_scene()
+    pressure = np.linspace(0.0, SEED_P_MAX, int(args.points))
+
+    print("Seed scene (Persson, PMMA on a silanised wafer; THEORY.md §7)")
+    print(f"  surface: {surface!r}")
+    print(f"  E = {SEED_YOUNG_MODULUS:.3g} Pa; Poisson ratio nu = {nu:g} "
+          f"{'assumed (the paper gives none)' if nu == SEED_POISSON_DEFAULT else 'given'}; "
+          f"E* = E/(1-nu^2) = {e_star:.4g} Pa")
+    slope = surface.slope_rms()
+    sqrt_g1 = e_star * slope / (2.0 * math.sqrt(2.0))
+    print(f"  h_rms = {surface.h_rms() * 1e9:.4g} nm, rms slope = {slope:.4g}, "
+          f"sqrt(G1) = E* slope_rms/(2 sqrt 2) = {sqrt_g1:.4g} Pa")
+    print(f"  {pressure.size} pressures from 0 to {SEED_P_MAX / 1e6:g} MPa, rtol = {args.rtol:g}")
+
+    t_start = time.perf_counter()
+    res = pf.solve_contact(surface, pressure, e_star=e_star, method="auto", rtol=args.rtol)
+    t_auto = time.perf_counter() - t_start
+    t0 = time.perf_counter()
+    res_cn = pf.solve_contact(surface, pressure, e_star=e_star, method="cn", rtol=args.rtol)
+    t_cn = time.perf_counter() - t0
+    diff = float(np.max(np.abs(res.area - res_cn.area)))
+    for label, r in (("auto", res), ("cn", res_cn)):
+        if not r.success:
+            print(f"  warning ({label}): {r.message}")
+
+    area_adh = None
+    t0 = time.perf_counter()
+    try:
+        res_adh = pf.solve_contact(surface, pressure, e_star=e_star,
+                                   work_of_adhesion=SEED_WORK_OF_ADHESION, method="auto",
+                                   rtol=args.rtol)
+    except (ImportError, NotImplementedError):
+        print("adhesive curve: not available in this version")
+        t_adh = None
+    else:
+        t_adh = time.perf_counter() - t0
+        area_adh = res_adh.area
+        if not res_adh.success:
+            print(f"  warning (adhesion): {res_adh.message}")
+    t_total = time.perf_counter() - t_start
+
+    print(f"A/A0 at {SEED_P_MAX / 1e6:g} MPa without adhesion: {res.area[-1]:.6g} "
+          f"(method {res.method!r}; 'cn' gives {res_cn.area[-1]:.6g})")
+    print(f"largest |A_auto - A_cn| over the pressures: {diff:.3g}")
+    if area_adh is not None:
+        print(f"A/A0 at {SEED_P_MAX / 1e6:g} MPa with adhesion (Delta gamma = "
+              f"{SEED_WORK_OF_ADHESION:g} J/m^2): {area_adh[-1]:.6g} (method {res_adh.method!r})")
+
+    os.makedirs(args.out, exist_ok=True)
+    csv_path = os.path.join(args.out, "figure2.csv")
+    columns = {"pressure_Pa": pressure, "area_no_adhesion": res.area}
+    if area_adh is not None:
+        columns["area_adhesion"] = area_adh
+    _write_csv(csv_path, columns)
+    print(f"wrote {csv_path}")
+    if args.no_plot:
+        print("plot: skipped (--no-plot)")
+    else:
+        png_path = os.path.join(args.out, "figure2.png")
+        if _plot_figure2(png_path, pressure, res.area, area_adh, nu):
+            print(f"wrote {png_path}")
+        else:
+            print("plot: skipped (matplotlib is not installed; pip install matplotlib)")
+
+    compile_s = sum(r.timings.get("compile", 0.0) for r in (res, res_cn))
+    timing = f"time: {t_total:.3g} s (auto {t_auto:.3g} s, cn {t_cn:.3g} s"
+    timing += f", adhesion {t_adh:.3g} s)" if t_adh is not None else ")"
+    print(timing)
+    if compile_s > 0:
+        print(f"compile time (included above): {compile_s:.3g} s")
+    else:
+        print("compile time: 0 s (kernels were already compiled in this process)")
+    return 0
+
+
+def _plot_figure2(path, pressure, area, area_adh, nu) -> bool:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return False
+    fig, ax = plt.subplots(figsize=(5.5, 4.0))
+    p_mpa = pressure / 1e6
+    ax.plot(p_mpa, area, color="C0", label="no adhesion")
+    if area_adh is not None:
+        ax.plot(p_mpa, area_adh, color="C3",
+                label=rf"adhesion, $\Delta\gamma$ = {SEED_WORK_OF_ADHESION:g} J/m$^2$")
+    ax.set_xlabel(r"nominal pressure $p_\mathrm{nom}$ (MPa)")
+    ax.set_ylabel(r"relative contact area $A/A_0$")
+    ax.set_xlim(0.0, p_mpa[-1])
+    ax.set_ylim(bottom=0.0)
+    assumed = " (assumed)" if nu == SEED_POISSON_DEFAULT else ""
+    ax.set_title(rf"PMMA, E = 2.9 GPa, $\nu$ = {nu:g}{assumed}", fontsize=10)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper left", frameon=False)
+    fig.tight_layout()
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
+    return True
+
+
+def _write_csv(path, columns: dict) -> None:
+    """Write equal-length columns; floats round-trip (repr), integer columns stay integers."""
+    names = list(columns)
+    arrays = [np.asarray(columns[n]) for n in names]
+    def as_int(v):
+        return str(int(v))
+
+    def as_float(v):
+        return repr(float(v))
+
+    fmt = [as_int if np.issubdtype(a.dtype, np.integer) else as_float for a in arrays]
+    with open(path, "w", newline="") as fh:
+        writer = csv.writer(fh)
+        writer.writerow(names)
+        for i in range(len(arrays[0]) if arrays else 0):
+            writer.writerow([f(a[i]) for f, a in zip(fmt, arrays)])
+
+
+# --------------------------------------------------------------------------------------------
+# contact
+# --------------------------------------------------------------------------------------------
+
+
+def _load_toml(path) -> dict:
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        try:
+            import tomli as tomllib
+        except ModuleNotFoundError:
+            raise CommandError(
+                "--config needs Python 3.11+ (tomllib) or the 'tomli' package") from None
+    try:
+        with open(path, "rb") as fh:
+            return tomllib.load(fh)
+    except OSError as exc:
+        raise CommandError(f"cannot read --config {path!r}: {exc.strerror}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise CommandError(f"--config {path!r} is not valid TOML: {exc}") from None
+
+
+def _number(value, key):
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise CommandError(f"{key} must be a number; got {value!r}")
+    return float(value)
+
+
+def _resolve_contact(args) -> dict:
+    """Merge the TOML file (if any) and the flags (which win) into one settings dict."""
+    cfg = _load_toml(args.config) if args.config else {}
+    known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv"}
+    unknown = sorted(set(cfg) - known_top)
+    if unknown:
+        raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
+                           f"expected {', '.join(sorted(known_top))}")
+    surf_cfg = cfg.get("surface", {})
+    if not isinstance(surf_cfg, dict):
+        raise CommandError("'surface' in --config must be a table ([surface])")
+    surf_cfg = dict(surf_cfg)
+
+    model = args.surface or surf_cfg.pop("model", None)
+    surf_cfg.pop("model", None)
+    if model is None:
+        raise CommandError("no surface model: give --surface {capillary,self-affine} or "
+                           "model = ... in the [surface] table of --config")
+    if model not in _SURFACE_KEYS:
+        raise CommandError(
+            f"surface model must be one of {', '.join(_SURFACE_KEYS)}; got {model!r}")
+    keys = _SURFACE_KEYS[model]
+    unknown = sorted(set(surf_cfg) - set(keys))
+    if unknown:
+        raise CommandError(f"unknown [surface] key(s) for model {model!r}: {', '.join(unknown)}; "
+                           f"expected {', '.join(keys)}")
+    params = {k: _number(v, f"surface.{k}") for k, v in surf_cfg.items()}
+    for key in keys:
+        value = getattr(args, key.lower())
+        if value is not None:
+            params[key] = value
+    # flags of the other model are an error, not silently ignored
+    other = {k for m, ks in _SURFACE_KEYS.items() if m != model for k in ks} - set(keys)
+    stray = [_FLAG_OF[k] for k in sorted(other) if getattr(args, k.lower()) is not None]
+    if stray:
+        raise CommandError(f"{', '.join(stray)} do(es) not apply to surface model {model!r}")
+    missing = [k for k in _REQUIRED[model] if k not in params]
+    if missing:
+        raise CommandError(f"surface model {model!r} needs " + ", ".join(
+            f"{_FLAG_OF[k]} (or {k} in [surface])" for k in missing))
+
+    e_star = args.e_star if args.e_star is not None else cfg.get("e_star")
+    if e_star is None:
+        raise CommandError("no effective modulus: give --e-star E [Pa] (or e_star in --config)")
+    e_star = _number(e_star, "e_star")
+
+    if args.pressure is not None:
+        pressure = np.asarray(args.pressure, dtype=float)
+    elif args.pressure_range is not None:
+        pressure = _pressure_range(*args.pressure_range)
+    elif "pressures" in cfg and "pressure_range" in cfg:
+        raise CommandError("--config gives both 'pressures' and 'pressure_range'; keep one")
+    elif "pressures" in cfg:
+        raw = cfg["pressures"]
+        raw = raw if isinstance(raw, list) else [raw]
+        pressure = np.asarray([_number(v, "pressures") for v in raw], dtype=float)
+    elif "pressure_range" in cfg:
+        raw = cfg["pressure_range"]
+        if not isinstance(raw, list) or len(raw) != 3:
+            raise CommandError(f"pressure_range must be [pmin, pmax, n]; got {raw!r}")
+        pressure = _pressure_range(*(_number(v, "pressure_range") for v in raw))
+    else:
+        raise CommandError("no pressures: give --pressure P [P ...] or "
+                           "--pressure-range PMIN PMAX N "
+                           "(or pressures / pressure_range in --config)")
+
+    method = args.method or cfg.get("method", "auto")
+    rtol = args.rtol if args.rtol is not None else _number(cfg.get("rtol", 1e-6), "rtol")
+    csv_path = args.csv or cfg.get("csv")
+    return {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
+            "method": method, "rtol": rtol, "csv": csv_path}
+
+
+def _pressure_range(pmin, pmax, n) -> np.ndarray:
+    if n != int(n) or n < 1:
+        raise CommandError(f"the number of pressures N must be a whole number >= 1; got {n!r}")
+    return np.linspace(float(pmin), float(pmax), int(n))
+
+
+def _make_surface(model: str, params: dict):
+    import persson_fast as pf
+
+    if model == "capillary":
+        return pf.CapillaryWaves(**params)
+    return pf.SelfAffine(**params)
+
+
+def _cmd_contact(args) -> int:
+    import persson_fast as pf
+
+    s = _resolve_contact(args)
+    surface = _make_surface(s["model"], s["params"])
+    e_star = s["e_star"]
+    t0 = time.perf_counter()
+    res = pf.solve_contact(surface, s["pressure"], e_star=e_star, method=s["method"],
+                           rtol=s["rtol"])
+    elapsed = time.perf_counter() - t0
+    slope = surface.slope_rms()
+    print(f"surface: {surface!r}")
+    print(f"h_rms = {surface.h_rms():.4g} m, rms slope = {slope:.4g}, E* = {e_star:.4g} Pa, "
+          f"sqrt(G1) = {e_star * slope / (2.0 * math.sqrt(2.0)):.4g} Pa")
+    print(f"method: {res.method} (asked {s['method']!r}), rtol = {s['rtol']:g}")
+    print(f"{'pressure [Pa]':>14}  {'A/A0':>12}  {'mean p_c [Pa]':>13}  status")
+    for p, a, mp, st in zip(res.pressure, res.area, res.mean_contact_pressure, res.status):
+        mp_s = f"{mp:13.5g}" if np.isfinite(mp) else f"{'-':>13}"
+        print(f"{p:14.6g}  {a:12.6g}  {mp_s}  {'ok' if st == 0 else f'code {int(st)}'}")
+    if not res.success:
+        print(f"warning: {res.message}")
+    timing = f"time: {elapsed:.3g} s"
+    if "compile" in res.timings:
+        timing += f" (compile {res.timings['compile']:.3g} s)"
+    print(timing)
+    if s["csv"]:
+        folder = os.path.dirname(s["csv"])
+        if folder:
+            os.makedirs(folder, exist_ok=True)
+        _write_csv(s["csv"], {"pressure_Pa": res.pressure, "area": res.area,
+                              "mean_contact_pressure_Pa": res.mean_contact_pressure,
+                              "status": res.status})
+        print(f"wrote {s['csv']}")
+    return 0
+
+
+# --------------------------------------------------------------------------------------------
+# info
+# --------------------------------------------------------------------------------------------
+
+
+def _cmd_info(args) -> int:
+    import platform
+
+    import numba
+
+    import persson_fast as pf
+
+    print(f"persson_fast {pf.__version__}")
+    print(f"python {platform.python_version()}, numpy {np.__version__}, numba {numba.__version__}")
+    print(f"platform: {platform.platform()}, {os.cpu_count()} CPUs")
+    print(f"numba threads: {numba.config.NUMBA_NUM_THREADS}")
+    cache = os.environ.get("NUMBA_CACHE_DIR")
+    print(f"numba cache dir: {cache if cache else 'next to the sources (__pycache__)'}")
+    t0 = time.perf_counter()
+    timings = pf.warmup()
+    total = time.perf_counter() - t0
+    parts = ", ".join(f"{k} {v:.3g} s" for k, v in timings.items())
+    print(f"warmup (compile or load from the cache): {total:.3g} s ({parts})")
+    return 0
+
+
+# --------------------------------------------------------------------------------------------
+# entry point
+# --------------------------------------------------------------------------------------------
+
+
+def main(argv=None) -> int:
+    """Run ``persson-fast``; return the exit code (0 ok, 1 file error, 2 invalid input)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if not argv or (argv[0].startswith("-") and argv[0] not in ("-h", "--help", "--version")):
+        argv = ["figure2", *argv]
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    handler = {"figure2": _cmd_figure2, "contact": _cmd_contact, "info": _cmd_info}[args.command]
+    try:
+        return int(handler(args) or 0)
+    except ValueError as exc:  # the package's (and this module's) invalid-input errors
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:  # an output file or folder that cannot be written
+        print(f"error: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
