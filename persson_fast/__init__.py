@@ -15,6 +15,7 @@ from .analytic import (
     linear_boundary_load,
     plastic_area,
 )
+from .adhesion import adhesion_zeta, pull_off
 from .api import default_zeta, solve_contact, solve_diffusion
 from .methods import METHODS
 from .results import ContactResult, DiffusionResult
@@ -31,6 +32,7 @@ __all__ = [
     "SelfAffine",
     "Surface",
     "TabulatedPSD",
+    "adhesion_zeta",
     "contact_area_no_adhesion",
     "default_zeta",
     "images_area",
@@ -41,6 +43,7 @@ __all__ = [
     "linear_boundary_detachment_rate",
     "linear_boundary_load",
     "plastic_area",
+    "pull_off",
     "seed_scene",
     "solve_contact",
     "solve_diffusion",

@@ -13,6 +13,7 @@ from ._validation import (
     check_nonnegative,
     check_positive,
 )
+from .adhesion import solve_adhesive_contact
 from .methods import check_method
 from .results import ContactResult, DiffusionResult, summarize_status
 from .sweep import run_sweep
@@ -211,7 +212,7 @@ def _check_zeta(zeta, surface) -> np.ndarray:
 
 def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_correction=None,
                   detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None,
-                  parallel=None) -> ContactResult:
+                  parallel=None, adhesion_controls=None) -> ContactResult:
     """Relative real contact area of a rough surface at many nominal pressures.
 
     Parameters
@@ -236,6 +237,9 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
         spectrum's breakpoints). [-]
     parallel : bool or None
         Spread pressures over threads (None: when there are >= 4 pressures).
+    adhesion_controls : dict or None
+        Fixed-point controls: ``max_iter`` (200), ``m_hist`` (Anderson depth, 5; 0 = plain
+        relaxation), ``omega`` (relaxation, 0.5), ``n_damp`` (2).
 
     Returns
     -------
@@ -243,6 +247,10 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
 
     Notes
     -----
+    With adhesion the detachment stress is the fixed point of seed Eqs. 8-9, solved per
+    pressure in compiled code (see :mod:`persson_fast.adhesion`); nominal tension (p < 0) is
+    allowed, and below the pull-off stress the area is 0. The default zeta grid is then
+    :func:`persson_fast.adhesion.adhesion_zeta` (finer, and refined near zeta = 1).
     Without adhesion the whole surface enters through G(zeta) (seed Eqs. 4-7); the area is
     erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the
     diffusion numerically (the same kernel the adhesive problem uses).
@@ -267,14 +275,13 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     for attr in ("q0", "q1", "diffusion_time", "breakpoints"):
         if not hasattr(surface, attr):
             raise ValueError(f"surface must be a persson_fast surface model; {type(surface).__name__} has no {attr!r}")
-    z = _check_zeta(zeta, surface)
+    z = _check_zeta(zeta, surface) if (zeta is not None or dg == 0) else None
     if dg > 0:
-        from .adhesion import solve_adhesive_contact
-
         return solve_adhesive_contact(surface, pressure, z, e_star=e, work_of_adhesion=dg,
                                       energy_correction=energy_correction,
                                       detachment_prefactor=float(beta), method=method,
-                                      rtol=rtol, parallel=parallel)
+                                      rtol=rtol, parallel=parallel, controls=adhesion_controls,
+                                      zeta_given=zeta is not None)
     p = _check_pressure(pressure, allow_negative=False)
     G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
     G[0] = 0.0

@@ -75,6 +75,11 @@ class ContactResult:
     detached_area, detached_load : (n_p,) -- bookkeeping at zeta1. [-], [Pa]
     error_estimate : (n_p,) -- estimate of the absolute error of ``area``. [-]
     method : str, status : (n_p,) int, success : bool, message : str, timings : dict
+    elastic_energy : (n_p, n_z) -- U_el(zeta) per nominal area (adhesion only). [J/m^2]
+    iterations : (n_p,) int -- fixed-point iterations (adhesion; 0 otherwise).
+    residual : (n_p,) -- final fixed-point residual, sup|F(x) - x| / max(|x|, |p|). [-]
+    sticky : (n_p,) bool -- gamma_eff(zeta = 1) > 0 (macroscopically sticky).
+    load_zeta, detached_load_zeta : (n_p, n_z) -- load in contact and detached load. [Pa]
     """
 
     pressure: np.ndarray
@@ -94,3 +99,9 @@ class ContactResult:
     success: bool
     message: str
     timings: dict = field(default_factory=dict)
+    elastic_energy: np.ndarray | None = None
+    iterations: np.ndarray | None = None
+    residual: np.ndarray | None = None
+    sticky: np.ndarray | None = None
+    load_zeta: np.ndarray | None = None
+    detached_load_zeta: np.ndarray | None = None

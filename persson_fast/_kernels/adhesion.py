@@ -1,0 +1,233 @@
+"""The self-consistent detachment stress sigma_a(zeta) (seed Eqs. 8-9), ``@njit``.
+
+Scaled, dimensionless inputs (the model layer divides stresses by a scene scale and energies by
+the work of adhesion):
+
+    sigma_a(zeta_i) = c_i sqrt(max(g_i, 0)),   c_i = beta sqrt(dgamma E* q_i) / scale
+    g_i = gamma_eff(zeta_i) / dgamma = (A(zeta1) - U_i) / A(zeta_i)                      (Eq. 9)
+    U_i = U_el(zeta_i) / dgamma = sum_{k >= i} wa_k F_k + wb_k F_{k+1},  F = A S(A)
+
+with S = 1 (``gamma_s < 0``) or S = gamma_s + (1 - gamma_s) A^2. The weights wa, wb integrate
+(pi E*/2) q^2 C(q) times a function linear in q over each interval exactly (from the surface's
+exact moments), so U_el is second-order accurate in the zeta grid.
+
+The fixed point x = sigma_a is solved by Anderson acceleration (type II, ``m_hist`` past
+iterates, least squares by normal equations with Tikhonov guard) or, with ``m_hist = 0``, by
+plain under-relaxation with factor ``omega``. Start: the full-contact detachment stress (A = 1),
+which also serves nominal tension (sigma0 < 0).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import njit_parallel, njit_serial, prange
+from . import status as st
+from .diffusion import solve_one
+
+
+@njit_serial
+def elastic_energy_ratio(area, wa, wb, gamma_s, out_u):
+    """U_el(zeta_i)/dgamma for an area profile (cumulative from zeta1 downwards)."""
+    n = area.shape[0]
+    out_u[n - 1] = 0.0
+    acc = 0.0
+    for k in range(n - 2, -1, -1):
+        a0 = area[k]
+        a1 = area[k + 1]
+        if gamma_s >= 0.0:
+            f0 = a0 * (gamma_s + (1.0 - gamma_s) * a0 * a0)
+            f1 = a1 * (gamma_s + (1.0 - gamma_s) * a1 * a1)
+        else:
+            f0 = a0
+            f1 = a1
+        acc += wa[k] * f0 + wb[k] * f1
+        out_u[k] = acc
+
+
+@njit_serial
+def detachment_update(area, c, wa, wb, gamma_s, u, g, out_x):
+    """One application of Eqs. 8-9: new sigma_a from an area profile. Fills u and g too."""
+    n = area.shape[0]
+    elastic_energy_ratio(area, wa, wb, gamma_s, u)
+    a1 = area[n - 1]
+    for i in range(n):
+        if area[i] > 0.0:
+            g[i] = (a1 - u[i]) / area[i]
+        else:
+            g[i] = 0.0
+        out_x[i] = c[i] * math.sqrt(g[i]) if g[i] > 0.0 else 0.0
+
+
+@njit_serial
+def _residual_norm(f, x, sigma0):
+    num = 0.0
+    den = abs(sigma0)
+    for i in range(f.shape[0]):
+        if abs(f[i]) > num:
+            num = abs(f[i])
+        if abs(x[i]) > den:
+            den = abs(x[i])
+    if den == 0.0:
+        return num
+    return num / den
+
+
+@njit_serial
+def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_hist, omega,
+                       out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
+                       out_det_load, out_error):
+    """Self-consistent contact of one nominal pressure (scaled units).
+
+    Parameters
+    ----------
+    G : (n_z,) -- diffusion times at the magnifications, G[0] = 0.
+    c : (n_z,) -- beta sqrt(dgamma E* q)/scale at the magnifications.
+    wa, wb : (n_z - 1,) -- quadrature weights of U_el / dgamma.
+    gamma_s : float -- energy correction gamma_S, or < 0 for S = 1.
+    sigma0 : float -- nominal stress / scale (may be negative).
+    rtol : float -- tolerance of the diffusion solves; the fixed point stops when the
+        sup-norm of F(x) - x, relative to max(|x|, |sigma0|), is below rtol / 10.
+    n_damp, max_iter, m_hist, omega -- Rannacher steps, iteration cap, Anderson depth
+        (0: plain relaxation), relaxation factor.
+    out_* -- (n_z,) area, sigma_a, gamma_eff/dgamma, U_el/dgamma, load, detached area and
+        load, area error estimate.
+
+    Returns
+    -------
+    (status, iterations, residual)
+    """
+    n = G.shape[0]
+    tol = 0.1 * rtol
+    if tol < 1e-13:
+        tol = 1e-13
+    x = np.empty(n)
+    fx = np.empty(n)
+    f = np.empty(n)
+    x_prev = np.empty(n)
+    f_prev = np.empty(n)
+    dX = np.zeros((m_hist if m_hist > 0 else 1, n))
+    dF = np.zeros((m_hist if m_hist > 0 else 1, n))
+    area = np.empty(n)
+    load = np.empty(n)
+    det_a = np.empty(n)
+    det_l = np.empty(n)
+    err = np.empty(n)
+    u = np.empty(n)
+    g = np.empty(n)
+    rows = np.empty((1, n))
+    ones = np.ones(n)
+    # start: detachment stress of full contact
+    detachment_update(ones, c, wa, wb, gamma_s, u, g, x)
+    status = st.OK
+    residual = np.inf
+    n_hist = 0
+    it = 0
+    kstat = 0
+    converged = False
+    while it < max_iter:
+        it += 1
+        for i in range(n):
+            rows[0, i] = x[i]
+        kstat = solve_one(G, rows[0], sigma0, rtol, n_damp, area, load, det_a, det_l, err)
+        if kstat != st.OK and kstat != st.WALL_JUMP:
+            status = kstat
+            break
+        detachment_update(area, c, wa, wb, gamma_s, u, g, fx)
+        for i in range(n):
+            f[i] = fx[i] - x[i]
+        residual = _residual_norm(f, x, sigma0)
+        if not math.isfinite(residual):
+            status = st.NONFINITE
+            break
+        if residual <= tol:
+            converged = True
+            break
+        if area[n - 1] <= 0.0 and sigma0 + x[0] <= 0.0 and fx[0] <= x[0]:
+            # separated and the wall keeps closing: no contact is the fixed point
+            for i in range(n):
+                x[i] = fx[i]
+            continue
+        # Anderson (type II) step, or plain relaxation when m_hist == 0
+        if m_hist > 0 and it > 1:
+            slot = (it - 2) % m_hist
+            for i in range(n):
+                dX[slot, i] = x[i] - x_prev[i]
+                dF[slot, i] = f[i] - f_prev[i]
+            if n_hist < m_hist:
+                n_hist += 1
+        for i in range(n):
+            x_prev[i] = x[i]
+            f_prev[i] = f[i]
+        if m_hist > 0 and n_hist > 0:
+            M = np.zeros((n_hist, n_hist))
+            r = np.zeros(n_hist)
+            for a in range(n_hist):
+                for b in range(n_hist):
+                    s = 0.0
+                    for i in range(n):
+                        s += dF[a, i] * dF[b, i]
+                    M[a, b] = s
+                s = 0.0
+                for i in range(n):
+                    s += dF[a, i] * f[i]
+                r[a] = s
+            trace = 0.0
+            for a in range(n_hist):
+                trace += M[a, a]
+            for a in range(n_hist):
+                M[a, a] += 1e-10 * trace + 1e-300
+            coef = np.linalg.solve(M, r)
+            for i in range(n):
+                corr = 0.0
+                for a in range(n_hist):
+                    corr += coef[a] * (dX[a, i] + omega * dF[a, i])
+                x[i] = x[i] + omega * f[i] - corr
+                if x[i] < 0.0:
+                    x[i] = 0.0
+        else:
+            for i in range(n):
+                x[i] = x[i] + omega * f[i]
+    if not converged and status == st.OK:
+        status = st.NOT_CONVERGED
+    if status == st.OK and kstat == st.WALL_JUMP:
+        status = st.WALL_JUMP
+    for i in range(n):
+        out_area[i] = area[i]
+        out_sigma_a[i] = x[i]
+        out_g[i] = g[i]
+        out_u[i] = u[i]
+        out_load[i] = load[i]
+        out_det_area[i] = det_a[i]
+        out_det_load[i] = det_l[i]
+        out_error[i] = err[i]
+    return status, it, residual
+
+
+@njit_serial
+def adhesive_sweep_serial(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
+                          omega, area, sigma_a, g, u, load, det_area, det_load, error, status,
+                          iterations, residual):
+    """All pressures in turn; outputs (n_p, n_z), status/iterations/residual (n_p,)."""
+    for k in range(pressures.shape[0]):
+        s, it, res = solve_adhesive_one(G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
+                                        max_iter, m_hist, omega, area[k], sigma_a[k], g[k],
+                                        u[k], load[k], det_area[k], det_load[k], error[k])
+        status[k] = s
+        iterations[k] = it
+        residual[k] = res
+
+
+@njit_parallel
+def adhesive_sweep_parallel(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
+                            omega, area, sigma_a, g, u, load, det_area, det_load, error, status,
+                            iterations, residual):
+    """Same as :func:`adhesive_sweep_serial`, pressures over threads with ``prange``."""
+    for k in prange(pressures.shape[0]):
+        s, it, res = solve_adhesive_one(G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
+                                        max_iter, m_hist, omega, area[k], sigma_a[k], g[k],
+                                        u[k], load[k], det_area[k], det_load[k], error[k])
+        status[k] = s
+        iterations[k] = it
+        residual[k] = res

@@ -1,0 +1,221 @@
+"""Adhesion: the self-consistent detachment stress sigma_a(zeta) around the diffusion kernel.
+
+Seed Eqs. 8-9 (THEORY.md section 4):
+
+    sigma_a(zeta) = beta (gamma_eff(zeta) E* q)^(1/2)                      (Eq. 8)
+    A(zeta) gamma_eff(zeta) = A(zeta1) dgamma - U_el(zeta)                    (Eq. 9)
+    U_el(zeta)/A0 = (pi E*/2) int_{zeta q0}^{q1} q^2 C(q) P(q) S(q) dq,  P(q) = A(q/q0)/A0
+
+(Persson, PRL 89, 245502 (2002); Eur. Phys. J. E 8, 385 (2002)). S = 1, or the later
+correction S = gamma_S + (1 - gamma_S) P^2 (Persson 2008). Where gamma_eff <= 0, sigma_a = 0.
+The fixed point runs entirely in compiled code (:mod:`persson_fast._kernels.adhesion`), one
+pressure per ``prange`` iteration.
+"""
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
+from ._kernels.status import NOT_CONVERGED
+from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
+from .results import ContactResult, summarize_status
+
+__all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
+
+#: iteration controls of the fixed point (Anderson depth 0 = plain relaxation)
+ADHESION_DEFAULTS = {"max_iter": 200, "m_hist": 5, "omega": 0.5, "n_damp": 2}
+#: magnifications per decade of the default zeta grid at rtol = 1e-6 (scales as rtol^-1/4)
+ZETA_PER_DECADE_ADHESION = 12
+#: zeta - 1 values added near zeta = 1, where an absorbing layer forms near pull-off
+NEAR_ONE = (1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3)
+PARALLEL_MIN_PRESSURES = 4
+
+
+def adhesion_zeta(surface, rtol: float = 1e-6, per_decade: int | None = None) -> np.ndarray:
+    """Default magnification grid of the adhesive problem. [-]
+
+    Log-spaced from 1 to zeta1 with ``per_decade`` points per decade (default
+    12 (1e-6/rtol)^(1/4), at least 4), plus the spectrum's breakpoints and points at
+    zeta - 1 = 1e-4 ... 0.3 (the grid must be fine near 1, THEORY.md section 5, item 6).
+    """
+    if per_decade is None:
+        per_decade = max(4, int(np.ceil(ZETA_PER_DECADE_ADHESION * (1e-6 / rtol) ** 0.25)))
+    zeta1 = surface.q1 / surface.q0
+    n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
+    z = np.geomspace(1.0, zeta1, n)
+    bp = np.asarray(surface.breakpoints(), dtype=float) / surface.q0
+    near = 1.0 + np.asarray(NEAR_ONE)
+    z = np.unique(np.concatenate([z, bp, near[near < zeta1]]))
+    z = z[(z >= 1.0) & (z <= zeta1)]
+    z[0], z[-1] = 1.0, zeta1
+    return z
+
+
+def _scene_arrays(surface, zeta, e_star, work_of_adhesion, detachment_prefactor):
+    """Scaled kernel inputs (G, c, wa, wb) and the stress scale [Pa]."""
+    q = zeta * surface.q0
+    G = np.asarray(surface.diffusion_time(q, e_star), dtype=float)
+    G[0] = 0.0
+    scale = float(np.sqrt(G[-1])) if G[-1] > 0 else 1.0
+    c_dim = detachment_prefactor * np.sqrt(work_of_adhesion * e_star * q)
+    scale = max(scale, float(c_dim[0]))
+    m2 = np.asarray(surface.moment(2, q[:-1], q[1:]), dtype=float)
+    m3 = np.asarray(surface.moment(3, q[:-1], q[1:]), dtype=float)
+    dq = q[1:] - q[:-1]
+    pref = 0.5 * np.pi * e_star / work_of_adhesion
+    wa = pref * (q[1:] * m2 - m3) / dq
+    wb = pref * (m3 - q[:-1] * m2) / dq
+    return G / scale**2, c_dim / scale, np.maximum(wa, 0.0), np.maximum(wb, 0.0), scale, G
+
+
+def _compiled(func) -> bool:
+    return len(getattr(func, "signatures", ())) > 0
+
+
+def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls):
+    n_p, n_z = p_scaled.size, G.size
+    outs = [np.zeros((n_p, n_z)) for _ in range(8)]
+    status = np.zeros(n_p, dtype=np.int64)
+    iterations = np.zeros(n_p, dtype=np.int64)
+    residual = np.zeros(n_p)
+    if parallel is None:
+        parallel = n_p >= PARALLEL_MIN_PRESSURES
+    kernel = adhesive_sweep_parallel if parallel else adhesive_sweep_serial
+    timings = {}
+    if not _compiled(kernel):
+        t0 = time.perf_counter()
+        kernel(G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
+               controls["m_hist"], controls["omega"], *[o[:1] for o in outs], status[:1],
+               iterations[:1], residual[:1])
+        timings["compile"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    kernel(G, c, wa, wb, gamma_s, p_scaled, rtol, controls["n_damp"], controls["max_iter"],
+           controls["m_hist"], controls["omega"], *outs, status, iterations, residual)
+    timings["solve"] = time.perf_counter() - t0
+    return outs, status, iterations, residual, timings
+
+
+def _controls(overrides):
+    controls = dict(ADHESION_DEFAULTS)
+    if overrides:
+        unknown = set(overrides) - set(controls)
+        if unknown:
+            raise ValueError(f"unknown adhesion control(s) {sorted(unknown)}; valid: {sorted(controls)}")
+        controls.update(overrides)
+    if int(controls["max_iter"]) < 1:
+        raise ValueError(f"max_iter must be >= 1 [-]; got max_iter = {controls['max_iter']!r}")
+    if int(controls["m_hist"]) < 0:
+        raise ValueError(f"m_hist must be >= 0 [-]; got m_hist = {controls['m_hist']!r}")
+    if not 0.0 < float(controls["omega"]) <= 1.0:
+        raise ValueError(f"omega must lie in (0, 1] [-]; got omega = {controls['omega']!r}")
+    return {"max_iter": int(controls["max_iter"]), "m_hist": int(controls["m_hist"]),
+            "omega": float(controls["omega"]), "n_damp": int(controls["n_damp"])}
+
+
+def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
+                           energy_correction=None, detachment_prefactor=2 ** -0.5,
+                           method="auto", rtol=1e-6, parallel=None, controls=None,
+                           zeta_given=False) -> ContactResult:
+    """Adhesive contact of one scene at many pressures (called by :func:`solve_contact`).
+
+    Arguments are validated by :func:`persson_fast.solve_contact`; ``zeta`` is the grid of
+    the fixed point (``adhesion_zeta`` unless the user gave one).
+    """
+    if method == "analytic":
+        raise ValueError(
+            "method 'analytic' has no closed form with adhesion (work_of_adhesion > 0); "
+            "use method='cn' or 'auto'"
+        )
+    p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))
+    check_finite(p, "pressure", "Pa")
+    p = np.atleast_1d(p).astype(float)
+    ctl = _controls(controls)
+    if not zeta_given:
+        zeta = adhesion_zeta(surface, rtol)
+    G, c, wa, wb, scale, G_dim = _scene_arrays(surface, zeta, e_star, work_of_adhesion,
+                                               detachment_prefactor)
+    gamma_s = -1.0 if energy_correction is None else float(energy_correction)
+    outs, status, iterations, residual, timings = _run(G, c, wa, wb, gamma_s, p / scale, rtol,
+                                                       parallel, ctl)
+    area_z, sa, g, u, load, det_a, det_l, err = outs
+    area = area_z[:, -1].copy()
+    load1 = load[:, -1] * scale
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean_p = np.where(area > 0, load1 / np.where(area > 0, area, 1.0), np.nan)
+    success, message = summarize_status(status)
+    if np.any(status == NOT_CONVERGED):
+        bad = np.flatnonzero(status == NOT_CONVERGED)
+        message += f"; largest fixed-point residual {residual[bad].max():.3g} after {iterations[bad].max()} iterations"
+    return ContactResult(
+        pressure=p, area=area, zeta=zeta, G=G_dim, area_zeta=area_z, sigma_a=sa * scale,
+        gamma_eff=g * work_of_adhesion, load=load1, mean_contact_pressure=mean_p,
+        detached_area=det_a[:, -1].copy(), detached_load=det_l[:, -1] * scale,
+        error_estimate=err[:, -1].copy(), method="cn", status=status, success=success,
+        message=message, timings=timings, elastic_energy=u * work_of_adhesion,
+        iterations=iterations, residual=residual, sticky=g[:, 0] > 0,
+        load_zeta=load * scale, detached_load_zeta=det_l * scale,
+    )
+
+
+def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
+             detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None):
+    """Pull-off stress of a nominally flat contact: contact exists for p_nom > -sigma_c. [Pa]
+
+    Parameters
+    ----------
+    surface : Surface
+    e_star : float -- effective modulus E* > 0. [Pa]
+    work_of_adhesion : float -- Delta gamma >= 0. [J/m^2]
+    energy_correction, detachment_prefactor : as in :func:`solve_contact`.
+    rtol : float -- relative accuracy of sigma_c (and of the inner solves). [-]
+
+    Returns
+    -------
+    sigma_c : float -- >= 0; 0 when the surfaces are not macroscopically sticky. [Pa]
+
+    Notes
+    -----
+    The pull-off stress is the largest tension -p_nom for which the fixed point of Eqs. 8-9
+    still has contact; it equals sigma_a(zeta = 1) there. It is bracketed between 0 and the
+    full-contact bound beta (Delta gamma E* q0)^(1/2) and found by bisection to ``rtol``.
+    Raises ``RuntimeError`` if a fixed point inside the bracket fails to converge.
+    """
+    from .api import _check_rtol, _check_zeta
+
+    rtol = _check_rtol(rtol)
+    e = as_float_array(e_star, "e_star", "Pa", ndim=(0,))
+    check_positive(e, "e_star", "Pa")
+    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
+    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
+    beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
+    check_positive(beta, "detachment_prefactor", "-")
+    e, dg, beta = float(e), float(dg), float(beta)
+    if dg == 0.0:
+        return 0.0
+    z = adhesion_zeta(surface, rtol) if zeta is None else _check_zeta(zeta, surface)
+
+    def contact(sigma0):
+        r = solve_adhesive_contact(surface, np.array([sigma0]), z, e_star=e, work_of_adhesion=dg,
+                                   energy_correction=energy_correction,
+                                   detachment_prefactor=beta, rtol=rtol, parallel=False,
+                                   controls=controls, zeta_given=True)
+        if r.status[0] == NOT_CONVERGED:
+            raise RuntimeError(f"pull_off: the adhesion fixed point did not converge at "
+                               f"p_nom = {sigma0!r} Pa ({r.message})")
+        return r.area[0] > 0, r
+
+    has, r0 = contact(0.0)
+    if not has:
+        return 0.0
+    hi = 0.0                                     # contact
+    lo = -beta * np.sqrt(dg * e * surface.q0)    # surely separated (sigma_a(1) <= this)
+    while hi - lo > rtol * max(abs(lo), abs(hi)):
+        mid = 0.5 * (lo + hi)
+        has, _ = contact(mid)
+        if has:
+            hi = mid
+        else:
+            lo = mid
+    return float(-0.5 * (lo + hi))
