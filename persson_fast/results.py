@@ -80,6 +80,8 @@ class ContactResult:
     residual : (n_p,) -- final fixed-point residual, sup|F(x) - x| / max(|x|, |p|). [-]
     sticky : (n_p,) bool -- gamma_eff(zeta = 1) > 0 (macroscopically sticky).
     load_zeta, detached_load_zeta : (n_p, n_z) -- load in contact and detached load. [Pa]
+    zeta_error : (n_p,) -- adhesion: estimated error of ``area`` from the zeta grid (the
+        difference of the two nested grids / 3); included in ``error_estimate``. [-]
     """
 
     pressure: np.ndarray
@@ -105,3 +107,4 @@ class ContactResult:
     sticky: np.ndarray | None = None
     load_zeta: np.ndarray | None = None
     detached_load_zeta: np.ndarray | None = None
+    zeta_error: np.ndarray | None = None

@@ -162,7 +162,7 @@ def test_convergence_order():
     G = np.geomspace(1.0, 1e6, 13)
     exact = pf.images_area(sigma0, G)
     errs = []
-    for rtol in (1e-3, 1e-3 / 16, 1e-3 / 256):
+    for rtol in (1e-5, 1e-5 / 16, 1e-5 / 256):
         r = pf.solve_diffusion(G, sigma0, rtol=rtol)
         errs.append(np.max(np.abs(r.area[0] - exact) / exact))
     orders = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))

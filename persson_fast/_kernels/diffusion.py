@@ -274,15 +274,22 @@ def _fluxes(p, h, drift, diff):
 
 @njit_serial
 def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nodes, h,
-          n_steps_per_lng, n_steps_per_width, refine, n_damp, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs, scratch,
-          out_area, out_load, out_det_area, out_det_load):
+          n_steps_per_lng, n_steps_per_width, refine, n_damp, coarsen_at, p, tmp, lo, di, up,
+          a_lo, a_di, a_up, rhs, scratch, out_area, out_load, out_det_area, out_det_load):
     """March one resolution from the exact start at ``g_start`` through the schedule.
 
     Scaled units (y0 = 1). Each schedule piece gets ``refine`` times the steps that
-    ``n_steps_per_lng`` (per unit of ln G) asks for, so that two resolutions step in exact ratio. Fills outputs for schedule indices >= ``i_first``. Returns
-    (status, leak) where leak is the mass lost through the far end.
+    ``n_steps_per_lng`` (per unit of ln G) and ``n_steps_per_width`` (per profile width
+    travelled by the wall) ask for, so that two resolutions step in exact ratio. At each
+    diffusion time in ``coarsen_at`` the grid drops every other node (the profile has widened);
+    a moment projection keeps the discrete area and first moment. Fills outputs for schedule
+    indices >= ``i_first``. Returns (status, leak), leak the mass lost through the far end.
     """
     n = n_nodes - 1
+    p = p[: n + 1]
+    tmp = tmp[: n + 1]
+    i_coarse = 0
+    n_coarse = coarsen_at.shape[0]
     w = math.sqrt(1.0 + 4.0 * g_start)
     # exact start profile on the grid
     sa_s = boundary_at(G_k, sa_k, g_start)
@@ -353,62 +360,82 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                 damp_left = n_damp
         else:
             v = (sa_k[i] - sa_cur) / (g_end - g_cur)
-            w_end = math.sqrt(1.0 + 4.0 * g_end)
-            lng = math.log(g_end / g_cur)
-            m = int(math.ceil(lng * n_steps_per_lng - 1e-9))
-            # the wall may travel at most 1/n_steps_per_width of the profile width per step
-            m_wall = int(math.ceil(abs(sa_k[i] - sa_cur) / math.sqrt(2.0 * g_cur)
-                                   * n_steps_per_width - 1e-9))
-            if m_wall > m:
-                m = m_wall
-            if m < 1:
-                m = 1
-            m *= refine
-            ratio = (g_end / g_cur) ** (1.0 / m)
-            g_a = g_cur
-            for step in range(m):
-                if damp_left > 0:
-                    n_sub = 2
-                    theta = 1.0
-                    damp_left -= 1
-                else:
-                    n_sub = 1
-                    theta = 0.5
-                rho = ratio ** (1.0 / n_sub)
-                for sub in range(n_sub):
-                    if step == m - 1 and sub == n_sub - 1:
-                        g_b = g_end
-                        w_b = w_end
-                        sa_b = sa_k[i]
+            while g_cur < g_end:
+                # coarsen when due; a coarsening time is an exact step boundary of both runs
+                while i_coarse < n_coarse and g_cur >= coarsen_at[i_coarse]:
+                    i_coarse += 1
+                    if n % 2 == 0:
+                        a_c, m_c = _moments(p, h)
+                        for j in range(n // 2 + 1):
+                            p[j] = p[2 * j]
+                        n //= 2
+                        h *= 2.0
+                        p = p[: n + 1]
+                        tmp = tmp[: n + 1]
+                        _project_moments(p, h, a_c, m_c)
+                g_stop = g_end
+                sa_stop = sa_k[i]
+                if i_coarse < n_coarse and coarsen_at[i_coarse] < g_end:
+                    g_stop = coarsen_at[i_coarse]
+                    sa_stop = sa_cur + v * (g_stop - g_cur)
+                w_stop = math.sqrt(1.0 + 4.0 * g_stop)
+                lng = math.log(g_stop / g_cur)
+                m = int(math.ceil(lng * n_steps_per_lng - 1e-9))
+                # the wall may travel at most 1/n_steps_per_width of the profile width per step
+                m_wall = int(math.ceil(abs(sa_stop - sa_cur) / math.sqrt(2.0 * g_cur)
+                                       * n_steps_per_width - 1e-9))
+                if m_wall > m:
+                    m = m_wall
+                if m < 1:
+                    m = 1
+                m *= refine
+                ratio = (g_stop / g_cur) ** (1.0 / m)
+                g_a = g_cur
+                for step in range(m):
+                    if damp_left > 0:
+                        n_sub = 2
+                        theta = 1.0
+                        damp_left -= 1
                     else:
-                        g_b = g_a * rho
-                        w_b = math.sqrt(1.0 + 4.0 * g_b)
-                        sa_b = sa_cur + v * (g_b - g_a)
-                    rr = w_b / w
-                    dt = (rr - 1.0) / (2.0 * theta + 2.0 * (1.0 - theta) * rr)
-                    drift = v * 0.5 * (w + w_b)
-                    # fit only a wall moving into the distribution (v < 0): then 2 xi and
-                    # -w v add up and the layer at the wall is real; a receding wall leaves no
-                    # layer and fitting would only add diffusion where the mass sits
-                    diff = fitted_diffusion(drift * h) if v < 0.0 else 1.0
-                    fw0, ff0 = _fluxes(p, h, drift, diff)
-                    theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs,
-                               scratch)
-                    fw1, ff1 = _fluxes(p, h, drift, diff)
-                    d_det = dt * ((1.0 - theta) * fw0 + theta * fw1)
-                    # compensated (Kahan) sums: thousands of tiny increments
-                    yk = d_det - det_c
-                    tk = det + yk
-                    det_c = (tk - det) - yk
-                    det = tk
-                    yk = (theta * sa_cur + (1.0 - theta) * sa_b) * d_det - det_load_c
-                    tk = det_load + yk
-                    det_load_c = (tk - det_load) - yk
-                    det_load = tk
-                    leak += dt * ((1.0 - theta) * ff0 + theta * ff1)
-                    w = w_b
-                    g_a = g_b
-                    sa_cur = sa_b
+                        n_sub = 1
+                        theta = 0.5
+                    rho = ratio ** (1.0 / n_sub)
+                    for sub in range(n_sub):
+                        if step == m - 1 and sub == n_sub - 1:
+                            g_b = g_stop
+                            w_b = w_stop
+                            sa_b = sa_stop
+                        else:
+                            g_b = g_a * rho
+                            w_b = math.sqrt(1.0 + 4.0 * g_b)
+                            sa_b = sa_cur + v * (g_b - g_a)
+                        rr = w_b / w
+                        dt = (rr - 1.0) / (2.0 * theta + 2.0 * (1.0 - theta) * rr)
+                        drift = v * 0.5 * (w + w_b)
+                        # fit only a wall moving into the distribution (v < 0): then 2 xi and
+                        # -w v add up and the layer at the wall is real; a receding wall leaves
+                        # no layer and fitting would only add diffusion where the mass sits
+                        diff = fitted_diffusion(drift * h) if v < 0.0 else 1.0
+                        fw0, ff0 = _fluxes(p, h, drift, diff)
+                        theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up,
+                                   rhs, scratch)
+                        fw1, ff1 = _fluxes(p, h, drift, diff)
+                        d_det = dt * ((1.0 - theta) * fw0 + theta * fw1)
+                        # compensated (Kahan) sums: thousands of tiny increments
+                        yk = d_det - det_c
+                        tk = det + yk
+                        det_c = (tk - det) - yk
+                        det = tk
+                        yk = (theta * sa_cur + (1.0 - theta) * sa_b) * d_det - det_load_c
+                        tk = det_load + yk
+                        det_load_c = (tk - det_load) - yk
+                        det_load = tk
+                        leak += dt * ((1.0 - theta) * ff0 + theta * ff1)
+                        w = w_b
+                        g_a = g_b
+                        sa_cur = sa_b
+                g_cur = g_stop
+                sa_cur = sa_stop
             g_cur = g_end
             sa_cur = sa_k[i]
         a, m1 = _moments(p, h)
@@ -543,8 +570,6 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     nper_width = NPER_WIDTH * scale
     w_s = math.sqrt(1.0 + 4.0 * g_start)
     std_start = math.sqrt(2.0 * g_start) / w_s
-    if h_c > std_start / 6.0:
-        h_c = std_start / 6.0
     xi_far = (1.0 + boundary_at(G_k, sa_k, g_start) - sa0s) / w_s
     pe = 0.0
     for k in range(i_first, nt + 1):
@@ -561,12 +586,28 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     xi_max = xi_far + K_DOMAIN
     if pe * h_c > PECLET_MAX:
         h_c = PECLET_MAX / pe
-    n_c = int(math.ceil(xi_max / h_c))
+    # the start may be narrower than h_c resolves: begin finer, then coarsen by factors of 2
+    # each time the profile width (sqrt(2G)/w, at most 1/sqrt 2) has grown past r_std new
+    # spacings
+    r_std = min(6.0, 0.6 / h_c)
+    h_0 = h_c
+    n_levels = 0
+    while h_0 > std_start / r_std and n_levels < 20:
+        h_0 *= 0.5
+        n_levels += 1
+    coarsen_at = np.empty(n_levels)
+    hh = h_0
+    for k in range(n_levels):
+        hh *= 2.0
+        s2 = (r_std * hh) ** 2
+        coarsen_at[k] = s2 / (2.0 - 4.0 * s2) if s2 < 0.4 else np.inf
+    block = 1 << n_levels
+    n_c = int(math.ceil(xi_max / (h_0 * block))) * block
+    if n_c < 16 * block:
+        n_c = 16 * block
     if n_c > N_MAX:
-        n_c = N_MAX
+        n_c = (N_MAX // block) * block
         status = st.GRID_CAP
-    if n_c < 16:
-        n_c = 16
     h_c = xi_max / n_c
     # two resolutions for Richardson extrapolation
     n_f = 2 * n_c
@@ -590,10 +631,10 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     fd = np.empty(nt + 1)
     fdl = np.empty(nt + 1)
     s1, leak1 = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_c + 1,
-                      h_c, nper, nper_width, 1, n_damp, p[: n_c + 1], tmp[: n_c + 1], lo, di, up, a_lo, a_di,
+                      h_c, nper, nper_width, 1, n_damp, coarsen_at, p[: n_c + 1], tmp[: n_c + 1], lo, di, up, a_lo, a_di,
                       a_up, rhs, scratch, ca, cl, cd, cdl)
     s2, leak2 = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_f + 1,
-                      0.5 * h_c, nper, nper_width, 2, n_damp, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs,
+                      0.5 * h_c, nper, nper_width, 2, n_damp, coarsen_at, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs,
                       scratch, fa, fl, fd, fdl)
     if s1 != st.OK:
         status = s1
