@@ -76,7 +76,7 @@ def _residual_norm(f, x, sigma0):
 
 @njit_serial
 def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_hist, omega,
-                       out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
+                       x_init, out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
                        out_det_load, out_error):
     """Self-consistent contact of one nominal pressure (scaled units).
 
@@ -91,6 +91,9 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
         sup-norm of F(x) - x, relative to max(|x|, |sigma0|), is below rtol / 10.
     n_damp, max_iter, m_hist, omega -- Rannacher steps, iteration cap, Anderson depth
         (0: plain relaxation), relaxation factor.
+    x_init : (n_z,) -- start sigma_a; a negative first entry selects the full-contact start.
+        Early iterations solve the diffusion to a looser tolerance (at most 1e-3, at least
+        rtol, a tenth of the current residual); the last ones to rtol.
     out_* -- (n_z,) area, sigma_a, gamma_eff/dgamma, U_el/dgamma, load, detached area and
         load, area error estimate.
 
@@ -118,19 +121,29 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
     g = np.empty(n)
     rows = np.empty((1, n))
     ones = np.ones(n)
-    # start: detachment stress of full contact
-    detachment_update(ones, c, wa, wb, gamma_s, u, g, x)
+    # start: the given profile, or the detachment stress of full contact
+    if x_init[0] >= 0.0:
+        for i in range(n):
+            x[i] = x_init[i]
+    else:
+        detachment_update(ones, c, wa, wb, gamma_s, u, g, x)
     status = st.OK
     residual = np.inf
     n_hist = 0
     it = 0
     kstat = 0
     converged = False
+    final_pass = False
     while it < max_iter:
         it += 1
         for i in range(n):
             rows[0, i] = x[i]
-        kstat = solve_one(G, rows[0], sigma0, rtol, n_damp, area, load, det_a, det_l, err)
+        rtol_it = 0.1 * residual
+        if rtol_it > 1e-3:
+            rtol_it = 1e-3
+        if rtol_it < rtol or final_pass:
+            rtol_it = rtol
+        kstat = solve_one(G, rows[0], sigma0, rtol_it, n_damp, area, load, det_a, det_l, err)
         if kstat != st.OK and kstat != st.WALL_JUMP:
             status = kstat
             break
@@ -142,8 +155,10 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
             status = st.NONFINITE
             break
         if residual <= tol:
-            converged = True
-            break
+            if rtol_it == rtol:
+                converged = True
+                break
+            final_pass = True     # converged on a loose inner solve: confirm at rtol
         if area[n - 1] <= 0.0 and sigma0 + x[0] <= 0.0 and fx[0] <= x[0]:
             # separated and the wall keeps closing: no contact is the fixed point
             for i in range(n):
@@ -207,12 +222,13 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
 
 @njit_serial
 def adhesive_sweep_serial(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
-                          omega, area, sigma_a, g, u, load, det_area, det_load, error, status,
-                          iterations, residual):
-    """All pressures in turn; outputs (n_p, n_z), status/iterations/residual (n_p,)."""
+                          omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error,
+                          status, iterations, residual):
+    """All pressures in turn; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,)."""
     for k in range(pressures.shape[0]):
         s, it, res = solve_adhesive_one(G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
-                                        max_iter, m_hist, omega, area[k], sigma_a[k], g[k],
+                                        max_iter, m_hist, omega, x_init[k], area[k],
+                                        sigma_a[k], g[k],
                                         u[k], load[k], det_area[k], det_load[k], error[k])
         status[k] = s
         iterations[k] = it
@@ -221,12 +237,13 @@ def adhesive_sweep_serial(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_it
 
 @njit_parallel
 def adhesive_sweep_parallel(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
-                            omega, area, sigma_a, g, u, load, det_area, det_load, error, status,
-                            iterations, residual):
+                            omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error,
+                            status, iterations, residual):
     """Same as :func:`adhesive_sweep_serial`, pressures over threads with ``prange``."""
     for k in prange(pressures.shape[0]):
         s, it, res = solve_adhesive_one(G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
-                                        max_iter, m_hist, omega, area[k], sigma_a[k], g[k],
+                                        max_iter, m_hist, omega, x_init[k], area[k],
+                                        sigma_a[k], g[k],
                                         u[k], load[k], det_area[k], det_load[k], error[k])
         status[k] = s
         iterations[k] = it

@@ -50,6 +50,7 @@ K_DOMAIN = 6.5        # far end of the grid beyond the farthest profile centre, 
 H_BASE = 0.06         # coarse node spacing in xi at rtol = 1e-6
 NPER_BASE = 5.0       # coarse steps per unit of ln G at rtol = 1e-6 (11.5 per decade)
 NPER_WIDTH = 40.0     # coarse steps per profile width sqrt(2G) travelled by the wall
+RECEDING_FACTOR = 0.25 # a receding wall (sigma_a growing) needs fewer steps per width travelled
 PECLET_MAX = 0.25      # largest cell Peclet number of the wall drift (exponentially fitted)
 N_MAX = 20000         # node cap of the coarse grid
 LEAK_TOL = 1e-10      # far-field leakage above this is flagged
@@ -382,8 +383,9 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                 lng = math.log(g_stop / g_cur)
                 m = int(math.ceil(lng * n_steps_per_lng - 1e-9))
                 # the wall may travel at most 1/n_steps_per_width of the profile width per step
+                per_width = n_steps_per_width if v < 0.0 else n_steps_per_width * RECEDING_FACTOR
                 m_wall = int(math.ceil(abs(sa_stop - sa_cur) / math.sqrt(2.0 * g_cur)
-                                       * n_steps_per_width - 1e-9))
+                                       * per_width - 1e-9))
                 if m_wall > m:
                     m = m_wall
                 if m < 1:
