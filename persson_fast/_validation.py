@@ -68,7 +68,8 @@ def check_nondecreasing(arr: np.ndarray, name: str, unit: str) -> None:
     if np.any(bad):
         i = int(np.argmax(bad))
         raise ValueError(
-            f"{name} must be non-decreasing [{unit}]; got {name}[{i}] = {arr[i]!r} > {name}[{i + 1}] = {arr[i + 1]!r}"
+            f"{name} must be non-decreasing [{unit}]; got {name}[{i}] = {arr[i].item()!r} > "
+            f"{name}[{i + 1}] = {arr[i + 1].item()!r}"
         )
 
 

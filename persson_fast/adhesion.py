@@ -18,22 +18,24 @@ import time
 import numpy as np
 
 from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
-from ._kernels.status import NOT_CONVERGED
+from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
 from .results import ContactResult, summarize_status
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
 
 #: iteration controls of the fixed point (Anderson depth 0 = plain relaxation)
-ADHESION_DEFAULTS = {"max_iter": 200, "m_hist": 5, "omega": 0.5, "n_damp": 2}
+ADHESION_DEFAULTS = {"max_iter": 100, "m_hist": 5, "omega": 0.5, "n_damp": 2}
 #: magnifications per decade of the coarser of the two nested default zeta grids at
 #: rtol = 1e-6, scaled as rtol^(-1/3). Measured on the seed scene (inner rtol 1e-9): the
 #: zeta-grid error of A(zeta1) is second order before extrapolation (ratio 3.9-4.0 per
 #: doubling) and third order after it (3.6e-6 at 20/decade, 4.5e-7 at 40, 7e-8 at 80);
 #: 46/decade keeps it near 0.3 rtol.
 ZETA_PER_DECADE_ADHESION = 46
-#: zeta - 1 values added near zeta = 1, where an absorbing layer forms near pull-off
-NEAR_ONE = (1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3)
+#: near zeta = 1, where an absorbing layer forms close to pull-off, points are also spaced
+#: in ln(zeta - 1) from NEAR_ONE_MIN to 1 with this fraction of the per-decade density
+NEAR_ONE_MIN = 1e-6
+NEAR_ONE_FRACTION = 0.5
 PARALLEL_MIN_PRESSURES = 4
 
 
@@ -50,7 +52,8 @@ def adhesion_zeta(surface, rtol: float = 1e-6, per_decade: int | None = None) ->
     n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
     z = np.geomspace(1.0, zeta1, n)
     bp = np.asarray(surface.breakpoints(), dtype=float) / surface.q0
-    near = 1.0 + np.asarray(NEAR_ONE)
+    n_near = max(2, int(np.ceil(-np.log10(NEAR_ONE_MIN) * per_decade * NEAR_ONE_FRACTION)))
+    near = 1.0 + np.geomspace(NEAR_ONE_MIN, 1.0, n_near)[:-1]
     z = np.unique(np.concatenate([z, bp, near[near < zeta1]]))
     z = z[(z >= 1.0) & (z <= zeta1)]
     z[0], z[-1] = 1.0, zeta1
@@ -132,11 +135,13 @@ def _controls(overrides):
 def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
                            energy_correction=None, detachment_prefactor=2 ** -0.5,
                            method="auto", rtol=1e-6, parallel=None, controls=None,
-                           zeta_given=False) -> ContactResult:
+                           zeta_given=False, start=None) -> ContactResult:
     """Adhesive contact of one scene at many pressures (called by :func:`solve_contact`).
 
     Arguments are validated by :func:`persson_fast.solve_contact`; ``zeta`` is the grid of
-    the fixed point (``adhesion_zeta`` unless the user gave one).
+    the fixed point (``adhesion_zeta`` unless the user gave one). ``start``: optional
+    (n_p, n_z) detachment stresses [Pa] on ``zeta`` to start the fixed point from
+    (continuation); default the full-contact detachment stress.
     """
     if method == "analytic":
         raise ValueError(
@@ -154,6 +159,9 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     results = []
     timings = {}
     x_init = None
+    if start is not None:
+        x_init = np.array(start, dtype=float) / _scene_arrays(
+            surface, zeta, e_star, work_of_adhesion, detachment_prefactor)[4]
     for grid in (zeta, refine_zeta(zeta)):
         G, c, wa, wb, scale, G_dim = _scene_arrays(surface, grid, e_star, work_of_adhesion,
                                                    detachment_prefactor)
@@ -175,8 +183,14 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     for k in range(len(ex)):
         ex[k][split] = of[k][split]
     area_z, sa, g, u, load, det_a, det_l, err = ex
+    # an extrapolated profile outside [0, 1] is a zeta-grid error: clip it and charge the
+    # overshoot to the error estimate
+    over = np.maximum(area_z - 1.0, 0.0) + np.maximum(-area_z, 0.0)
+    area_z = np.clip(area_z, 0.0, 1.0)
     err = np.abs(of[7]) + np.abs(of[0] - oc[0]) / 3.0
     zeta_err = np.abs(of[0][:, -1] - oc[0][:, -1]) / np.where(split, 1.0, 3.0)
+    zeta_err = np.maximum(zeta_err, over.max(axis=1))
+    err[:, -1] = np.maximum(err[:, -1], zeta_err)
     status = np.where(sf != 0, sf, sc)
     iterations = ic + if_
     residual = np.maximum(rc, rf)
@@ -202,7 +216,8 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
 
 
 def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
-             detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None):
+             detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None,
+             full_output=False):
     """Pull-off stress of a nominally flat contact: contact exists for p_nom > -sigma_c. [Pa]
 
     Parameters
@@ -213,16 +228,25 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     energy_correction, detachment_prefactor : as in :func:`solve_contact`.
     rtol : float -- relative accuracy of sigma_c (and of the inner solves). [-]
 
+    full_output : bool -- also return a dict with the final bracket [Pa], the number of
+        solves, and how many of them ended unconverged.
+
     Returns
     -------
     sigma_c : float -- >= 0; 0 when the surfaces are not macroscopically sticky. [Pa]
+    info : dict -- only with ``full_output``.
 
     Notes
     -----
     The pull-off stress is the largest tension -p_nom for which the fixed point of Eqs. 8-9
-    still has contact; it equals sigma_a(zeta = 1) there. It is bracketed between 0 and the
-    full-contact bound beta (Delta gamma E* q0)^(1/2) and found by bisection to ``rtol``.
-    Raises ``RuntimeError`` if a fixed point inside the bracket fails to converge.
+    still has contact. It is bracketed between 0 and the full-contact bound
+    beta (Delta gamma E* q0)^(1/2) and found by bisection to ``rtol``, each solve starting
+    from the contact solution at the nearest tension known to have contact (continuation
+    along the contact branch). Close to the end of the branch the fixed point can stop
+    converging (the iteration is drawn to the separated state); such a tension counts as
+    "no contact found", and ``info["unconverged"]`` says how often that decided a step.
+    Raises ``RuntimeError`` if the solve at p_nom = 0 fails or a solve is flagged for another
+    reason (resolution cap, far-field leak).
     """
     from .api import _check_rtol, _check_zeta
 
@@ -235,29 +259,40 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     check_positive(beta, "detachment_prefactor", "-")
     e, dg, beta = float(e), float(dg), float(beta)
     if dg == 0.0:
-        return 0.0
+        return (0.0, {"solves": 0, "unconverged": 0, "bracket": (0.0, 0.0)}) if full_output else 0.0
     z = adhesion_zeta(surface, rtol) if zeta is None else _check_zeta(zeta, surface)
 
-    def contact(sigma0):
+    def contact(sigma0, start):
         r = solve_adhesive_contact(surface, np.array([sigma0]), z, e_star=e, work_of_adhesion=dg,
                                    energy_correction=energy_correction,
                                    detachment_prefactor=beta, rtol=rtol, parallel=False,
-                                   controls=controls, zeta_given=True)
-        if r.status[0] == NOT_CONVERGED:
-            raise RuntimeError(f"pull_off: the adhesion fixed point did not converge at "
-                               f"p_nom = {sigma0!r} Pa ({r.message})")
+                                   controls=controls, zeta_given=True, start=start)
+        info["solves"] += 1
+        if r.status[0] == NOT_CONVERGED and sigma0 < 0.0:
+            info["unconverged"] += 1      # stalled at the edge of the branch
+            return False, r
+        if r.status[0] not in (0, WALL_JUMP):
+            raise RuntimeError(f"pull_off: the contact problem failed at p_nom = {sigma0!r} Pa "
+                               f"({r.message}); try a smaller rtol or a finer zeta grid")
         return r.area[0] > 0, r
 
-    has, r0 = contact(0.0)
+    info = {"solves": 0, "unconverged": 0}
+
+    has, r_hi = contact(0.0, None)
     if not has:
-        return 0.0
+        info["bracket"] = (0.0, 0.0)
+        return (0.0, info) if full_output else 0.0
     hi = 0.0                                     # contact
     lo = -beta * np.sqrt(dg * e * surface.q0)    # surely separated (sigma_a(1) <= this)
     while hi - lo > rtol * max(abs(lo), abs(hi)):
         mid = 0.5 * (lo + hi)
-        has, _ = contact(mid)
+        # continuation: start from the contact solution at the nearest pressure with contact,
+        # so that the fixed point follows the contact branch as far as it exists
+        has, r = contact(mid, r_hi.sigma_a)
         if has:
-            hi = mid
+            hi, r_hi = mid, r
         else:
             lo = mid
-    return float(-0.5 * (lo + hi))
+    info["bracket"] = (float(-hi), float(-lo))
+    sigma_c = float(-0.5 * (lo + hi))
+    return (sigma_c, info) if full_output else sigma_c

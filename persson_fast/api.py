@@ -44,7 +44,7 @@ def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
             label = "pressure" if p.ndim == 0 else f"pressure[{i}]"
             raise ValueError(
                 f"pressure must be >= 0 [Pa] without adhesion (a tensile nominal stress "
-                f"separates the surfaces); got {label} = {arr[i]!r}"
+                f"separates the surfaces); got {label} = {arr[i].item()!r}"
             )
     return np.atleast_1d(p).astype(np.float64)
 
@@ -199,14 +199,14 @@ def _check_zeta(zeta, surface) -> np.ndarray:
     check_finite(z, "zeta", "-")
     zeta1 = surface.q1 / surface.q0
     if z.size < 1 or z[0] != 1.0:
-        raise ValueError(f"zeta must start at 1 [-]; got zeta[0] = {z[0] if z.size else None!r}")
+        raise ValueError(f"zeta must start at 1 [-]; got zeta[0] = {z[0].item() if z.size else None!r}")
     bad = (z < 1.0) | (z > zeta1 * (1 + 1e-12))
     if np.any(bad):
         i = int(np.argmax(bad))
-        raise ValueError(f"zeta must lie in [1, q1/q0 = {zeta1!r}] [-]; got zeta[{i}] = {z[i]!r}")
+        raise ValueError(f"zeta must lie in [1, q1/q0 = {float(zeta1)!r}] [-]; got zeta[{i}] = {z[i].item()!r}")
     if np.any(np.diff(z) <= 0):
         i = int(np.argmax(np.diff(z) <= 0))
-        raise ValueError(f"zeta must be increasing [-]; got zeta[{i}] = {z[i]!r} >= zeta[{i + 1}] = {z[i + 1]!r}")
+        raise ValueError(f"zeta must be increasing [-]; got zeta[{i}] = {z[i].item()!r} >= zeta[{i + 1}] = {z[i + 1].item()!r}")
     return z
 
 

@@ -14,7 +14,10 @@ exact moments), so U_el is second-order accurate in the zeta grid.
 The fixed point x = sigma_a is solved by Anderson acceleration (type II, ``m_hist`` past
 iterates, least squares by normal equations with Tikhonov guard) or, with ``m_hist = 0``, by
 plain under-relaxation with factor ``omega``. Start: the full-contact detachment stress (A = 1),
-which also serves nominal tension (sigma0 < 0).
+which also serves nominal tension (sigma0 < 0). In tension, an iteration that leaves the
+contact branch (its iterates map to "no adhesion anywhere", or the contact area vanishes)
+(or stalls with a contact area below rtol) ends in the separated state A = 0; contact solutions beyond the end of the contact branch
+are not searched for.
 """
 from __future__ import annotations
 
@@ -25,6 +28,12 @@ import numpy as np
 from .._jit import njit_parallel, njit_serial, prange
 from . import status as st
 from .diffusion import solve_one
+
+#: iterations without halving the best residual after which the fixed point gives up
+STALL_ITERATIONS = 10
+#: consecutive iterates mapped to 'no adhesion anywhere' (F(x) = 0) after which the contact
+#: branch counts as lost
+LOST_ITERATIONS = 3
 
 
 @njit_serial
@@ -134,6 +143,10 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
     kstat = 0
     converged = False
     final_pass = False
+    best = np.inf
+    best_mark = np.inf
+    lost = 0
+    it_mark = 0
     while it < max_iter:
         it += 1
         for i in range(n):
@@ -144,15 +157,28 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
         if rtol_it < rtol or final_pass:
             rtol_it = rtol
         kstat = solve_one(G, rows[0], sigma0, rtol_it, n_damp, area, load, det_a, det_l, err)
-        if kstat != st.OK and kstat != st.WALL_JUMP:
+        if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
             break
+        # other flags (resolution cap, far leak, jump) of an intermediate iterate are not
+        # fatal: the status of the final solve is what the result reports
         detachment_update(area, c, wa, wb, gamma_s, u, g, fx)
         for i in range(n):
             f[i] = fx[i] - x[i]
         residual = _residual_norm(f, x, sigma0)
         if not math.isfinite(residual):
             status = st.NONFINITE
+            break
+        # stagnation: no halving of the best residual over STALL_ITERATIONS iterations
+        if residual < best:
+            if residual < 0.5 * best_mark:
+                best_mark = residual
+                it_mark = it
+            best = residual
+        if it - it_mark > STALL_ITERATIONS:
+            break
+        lost = lost + 1 if (fx[0] == 0.0 and x[0] > 0.0 and sigma0 < 0.0) else 0
+        if lost >= LOST_ITERATIONS:
             break
         if residual <= tol:
             if rtol_it == rtol:
@@ -204,10 +230,36 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
         else:
             for i in range(n):
                 x[i] = x[i] + omega * f[i]
+        # safeguard: a step must not carry a contact state across the wall (y0 <= 0), where
+        # separation would lock in; backtrack towards the last iterate and drop the history
+        y_min = 1e-6 * abs(sigma0)
+        if sigma0 + x_prev[0] > y_min and sigma0 + x[0] <= y_min:
+            for _ in range(60):
+                for i in range(n):
+                    x[i] = x_prev[i] + 0.5 * (x[i] - x_prev[i])
+                if sigma0 + x[0] > y_min:
+                    break
+            n_hist = 0
+    if (not converged and status == st.OK and sigma0 < 0.0
+            and (lost >= LOST_ITERATIONS or area[n - 1] <= rtol)):
+        # nominal tension and the iteration has left the contact branch: the surfaces
+        # separate (A = 0), which is the fixed point reached (THEORY.md section 4)
+        for i in range(n):
+            area[i] = 0.0
+            x[i] = 0.0
+            g[i] = 0.0
+            u[i] = 0.0
+            load[i] = 0.0
+            det_a[i] = 1.0
+            det_l[i] = -sigma0
+            err[i] = 0.0
+        converged = True
+        residual = 0.0
+        kstat = st.OK
     if not converged and status == st.OK:
         status = st.NOT_CONVERGED
-    if status == st.OK and kstat == st.WALL_JUMP:
-        status = st.WALL_JUMP
+    if status == st.OK and kstat != st.OK:
+        status = kstat
     for i in range(n):
         out_area[i] = area[i]
         out_sigma_a[i] = x[i]

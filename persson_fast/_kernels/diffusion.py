@@ -52,7 +52,9 @@ NPER_BASE = 5.0       # coarse steps per unit of ln G at rtol = 1e-6 (11.5 per d
 NPER_WIDTH = 40.0     # coarse steps per profile width sqrt(2G) travelled by the wall
 RECEDING_FACTOR = 0.25 # a receding wall (sigma_a growing) needs fewer steps per width travelled
 PECLET_MAX = 0.25      # largest cell Peclet number of the wall drift (exponentially fitted)
-N_MAX = 20000         # node cap of the coarse grid
+WORK_MAX = 4e6       # coarse node-steps above which resolution is cut (and flagged)
+MAX_LEVELS = 8        # at most 2^8 times finer at the start than at the end
+N_MAX = 4096          # node cap of the coarse grid
 LEAK_TOL = 1e-10      # far-field leakage above this is flagged
 K_LAYER = 1.0         # after a cut, the wall layer is smoothed over a diffusion time K_LAYER h^2
 GAUSS3_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
@@ -560,6 +562,17 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
         return st.OK
     if g_start <= 0.0:
         return st.START_UNRESOLVED
+    # everything detached before the grid would start: the rest is the empty state
+    if start_linear:
+        a_start, _ = linear_wall_area_moment(1.0, b_lin, g_start)
+        if a_start <= 0.0:
+            for k in range(i_first, nt + 1):
+                out_area[k - 1] = 0.0
+                out_load[k - 1] = 0.0
+                out_det_area[k - 1] = 1.0
+                out_det_load[k - 1] = -sigma0
+                out_error[k - 1] = 0.0
+            return st.OK
     # grid: domain, spacing (tolerance, start width, Peclet), step density
     status = st.OK
     scale = (1e-6 / rtol) ** 0.25
@@ -594,9 +607,11 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     r_std = min(6.0, 0.6 / h_c)
     h_0 = h_c
     n_levels = 0
-    while h_0 > std_start / r_std and n_levels < 20:
+    while h_0 > std_start / r_std and n_levels < MAX_LEVELS:
         h_0 *= 0.5
         n_levels += 1
+    if h_0 > std_start / r_std:
+        status = st.START_UNRESOLVED
     coarsen_at = np.empty(n_levels)
     hh = h_0
     for k in range(n_levels):
@@ -611,6 +626,30 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
         n_c = (N_MAX // block) * block
         status = st.GRID_CAP
     h_c = xi_max / n_c
+    # work cap: estimate the coarse steps as march will take them; past WORK_MAX node-steps
+    # the step densities (then the grid) are reduced and the result is flagged
+    m_est = 0.0
+    g_prev = g_start
+    for k in range(i_first, nt + 1):
+        g_k = G_k[k]
+        if g_k <= g_prev:
+            continue
+        sa_prev = boundary_at(G_k, sa_k, g_prev)
+        m_l = math.ceil(math.log(g_k / g_prev) * nper)
+        pw = nper_width if sa_k[k] < sa_prev else nper_width * RECEDING_FACTOR
+        m_w = math.ceil(abs(sa_k[k] - sa_prev) / math.sqrt(2.0 * g_prev) * pw)
+        m_est += max(m_l, m_w, 1.0)
+        g_prev = g_k
+    m_est += n_levels
+    if m_est * n_c > WORK_MAX:
+        status = st.GRID_CAP
+        f_cut = WORK_MAX / (m_est * n_c)
+        nper *= f_cut
+        nper_width *= f_cut
+        if nper < 0.05:
+            nper = 0.05
+        if nper_width < 0.05:
+            nper_width = 0.05
     # two resolutions for Richardson extrapolation
     n_f = 2 * n_c
     nf1 = n_f + 1
@@ -644,9 +683,18 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
         status = s2
     for k in range(i_first, nt + 1):
         a = (4.0 * fa[k] - ca[k]) / 3.0
+        d = (4.0 * fd[k] - cd[k]) / 3.0
+        # the extrapolation may overshoot [0, 1] by rounding-size amounts: clip, keeping
+        # A + detached = 1
+        if a > 1.0:
+            d += a - 1.0
+            a = 1.0
+        elif a < 0.0:
+            d += a
+            a = 0.0
         out_area[k - 1] = a
         out_load[k - 1] = (4.0 * fl[k] - cl[k]) / 3.0 * y0
-        out_det_area[k - 1] = (4.0 * fd[k] - cd[k]) / 3.0
+        out_det_area[k - 1] = d
         out_det_load[k - 1] = (4.0 * fdl[k] - cdl[k]) / 3.0 * y0
         out_error[k - 1] = abs(fa[k] - ca[k]) / 3.0
         if not math.isfinite(a):

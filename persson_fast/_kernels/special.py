@@ -73,10 +73,9 @@ def linear_wall_density(y, y0, b, G):
         return 0.0
     v = 2.0 * G
     d1 = y - y0 - b * G
-    d2 = y + y0 - b * G
-    # Q = N(d1) * (1 - exp(-b y0) N(d2)/N(d1));  N(d2)/N(d1) = exp(-(d2^2 - d1^2)/(2v)) and
-    # d2^2 - d1^2 = 4 y0 (y - bG)  ->  ratio * exp(-b y0) = exp(-y0 y / G) ... (exact algebra)
-    e = -b * y0 - (d2 * d2 - d1 * d1) / (2.0 * v)
+    # Q = N(d1) (1 - exp(-b y0) N(d2)/N(d1)) with d2 = y + y0 - bG; since
+    # d2^2 - d1^2 = 4 y0 (y - bG), the exponent is exactly -y0 y / G (<= 0, no overflow)
+    e = -y0 * y / G
     q = normal_pdf(d1, v) * (-math.expm1(e))
     if q < 0.0:
         q = 0.0
