@@ -21,6 +21,7 @@ from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
 from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
 from .results import ContactResult, summarize_status
+from .sweep import interleave
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
 
@@ -108,11 +109,16 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None)
                controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs], status[:1],
                iterations[:1], residual[:1])
         timings["compile"] = time.perf_counter() - t0
+    order = interleave(n_p) if parallel else np.arange(n_p)
     t0 = time.perf_counter()
-    kernel(G, c, wa, wb, gamma_s, p_scaled, rtol, controls["n_damp"], controls["max_iter"],
-           controls["m_hist"], controls["omega"], x_init, *outs, status, iterations, residual)
+    kernel(G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled[order]), rtol,
+           controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
+           np.ascontiguousarray(x_init[order]), *outs, status, iterations, residual)
     timings["solve"] = time.perf_counter() - t0
-    return outs, status, iterations, residual, timings
+    inverse = np.empty_like(order)
+    inverse[order] = np.arange(n_p)
+    outs = [o[inverse] for o in outs]
+    return outs, status[inverse], iterations[inverse], residual[inverse], timings
 
 
 def _controls(overrides):
