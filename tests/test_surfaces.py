@@ -406,7 +406,7 @@ def test_reprs_show_parameters():
 _PROPERTY_SURFACES = _surfaces()
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=60, deadline=None, derandomize=True, database=None)
 @given(
     which=st.integers(0, len(_PROPERTY_SURFACES) - 1),
     u=st.lists(st.floats(-0.2, 1.2), min_size=2, max_size=30),
