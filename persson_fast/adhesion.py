@@ -1,6 +1,6 @@
 """Adhesion: the self-consistent detachment stress sigma_a(zeta) around the diffusion kernel.
 
-Seed Eqs. 8-9 (THEORY.md section 4):
+Seed Eqs. 8-9:
 
     sigma_a(zeta) = beta (gamma_eff(zeta) E* q)^(1/2)                      (Eq. 8)
     A(zeta) gamma_eff(zeta) = A(zeta1) dgamma - U_el(zeta)                    (Eq. 9)
@@ -45,7 +45,7 @@ def adhesion_zeta(surface, rtol: float = 1e-6, per_decade: int | None = None) ->
 
     Log-spaced from 1 to zeta1 with ``per_decade`` points per decade (default
     46 (1e-6/rtol)^(1/3), at least 4), plus the spectrum's breakpoints and points at
-    zeta - 1 = 1e-4 ... 0.3 (the grid must be fine near 1, THEORY.md section 5, item 6).
+    zeta - 1 = 1e-4 ... 0.3 (the grid must be fine near 1).
     """
     if per_decade is None:
         per_decade = max(4, int(np.ceil(ZETA_PER_DECADE_ADHESION * (1e-6 / rtol) ** (1 / 3))))

@@ -1,4 +1,4 @@
-"""Closed-form solutions of the stress diffusion (THEORY.md §3 and §6).
+"""Closed-form solutions of the stress diffusion.
 
 Persson's stress distribution obeys the heat equation ``dP/dG = d2P/dsigma2`` in the
 "diffusion time" ``G`` [Pa^2] (free variance ``2 G``), starting from ``P = delta(sigma - sigma0)``
@@ -238,7 +238,7 @@ def images_area(pressure, G):
 
     Notes
     -----
-    Persson, J. Chem. Phys. 115, 3840 (2001); THEORY.md §3: the heat equation
+    Persson, J. Chem. Phys. 115, 3840 (2001): the heat equation
     dP/dG = d2P/dsigma2 with P(0) = delta(sigma - sigma0) and P(sigma = 0) = 0 is solved by the
     image pair (images_density), whose integral over sigma >= 0 is erf(sigma0 / (2 sqrt G)).
     scipy's erf keeps full relative accuracy for small arguments, so tiny areas are exact.
@@ -283,7 +283,7 @@ def images_density(sigma, pressure, G):
 
     Notes
     -----
-    THEORY.md §3 (Persson 2001).  The difference of the two Gaussians is written as
+    Persson 2001.  The difference of the two Gaussians is written as
     exp(-(sigma-sigma0)^2/4G) * (-expm1(-sigma sigma0 / G)), exact algebra that keeps full
     relative accuracy when sigma sigma0 / G is tiny and never overflows.
     """
@@ -343,7 +343,7 @@ def images_moments(pressure, G):
 
     Notes
     -----
-    THEORY.md §3.  The second moment follows from the Gaussian integrals of the image pair; every
+    The second moment follows from the Gaussian integrals of the image pair; every
     term is non-negative, so it is accurate as written.  G = 0 gives (1 or 0, sigma0, sigma0^2).
     """
     pressure = as_float_array(pressure, "pressure", "Pa")
@@ -494,7 +494,7 @@ def linear_boundary_area(pressure, G, a, b):
 
     Notes
     -----
-    THEORY.md §3: with y = sigma + sigma_a(G) the stress performs a Brownian motion with drift b
+    With y = sigma + sigma_a(G) the stress performs a Brownian motion with drift b
     and variance 2G, absorbed at y = 0; Girsanov's theorem plus the image at -y0 gives the
     formula (the Wiener process with drift and an absorbing barrier, e.g. Cox & Miller,
     The Theory of Stochastic Processes, 1965, ch. 5; here the diffusion coefficient is 1 per unit
@@ -540,7 +540,7 @@ def linear_boundary_detachment_rate(pressure, G, a, b):
 
     Notes
     -----
-    THEORY.md §3: the first-passage-time density of Brownian motion with drift b (variance 2G)
+    The first-passage-time density of Brownian motion with drift b (variance 2G)
     to the level -y0 (inverse-Gaussian law).  Evaluated as alpha exp(-(alpha+c)^2)/(sqrt(pi) G)
     with alpha = y0/(2 sqrt G), c = b sqrt(G)/2 (no overflow; exact zero far in the tails).
     """
@@ -584,7 +584,7 @@ def linear_boundary_density(sigma, pressure, G, a, b):
 
     Notes
     -----
-    THEORY.md §3 (Girsanov + images).  The ratio of the image term to the direct term is exactly
+    Girsanov + images.  The ratio of the image term to the direct term is exactly
     exp(-y y0 / G), and y - y0 - bG = sigma - sigma0, so the density is evaluated as
     N(sigma - sigma0; 2G) * (-expm1(-y y0 / G)): no overflow of exp(-b y0), full relative
     accuracy next to the wall.  Its integral over y >= 0 is :func:`linear_boundary_area`.
@@ -635,7 +635,7 @@ def linear_boundary_load(pressure, G, a, b):
     m Phi(m/sqrt(2G)) - m' exp(-b y0) Phi(m'/sqrt(2G)), m = y0 + bG, m' = bG - y0, because the two
     Gaussian-pdf terms of integral_0^inf y N(y - mu; v) dy = mu Phi(mu/sqrt v) + sqrt(v) phi(mu/sqrt v)
     cancel exactly (exp(-b y0) phi(m'/sqrt v) = phi(m/sqrt v)).  That is bG A + y0 B; subtracting
-    sigma_a A = (a + bG) A gives L = y0 B - a A.  It satisfies the load bookkeeping of THEORY.md §4,
+    sigma_a A = (a + bG) A gives L = y0 B - a A.  It satisfies the load bookkeeping of the adhesive model (detachment at -sigma_a),
     L(G) = sigma0 + integral_0^G sigma_a(G') g(G') dG'.  B - A = exp(-4 alpha c) erfc(alpha - c)
     >= 0, so the form sigma0 B + a (B - A) (a >= 0) or y0 B + |a| A (a < 0) is a sum of
     non-negative terms whenever sigma0 >= 0 or a < 0; only for a tensile start (sigma0 < 0 < a),
@@ -739,7 +739,7 @@ def plastic_area(pressure, G, yield_stress, n_terms=None):
 
     Notes
     -----
-    Persson, J. Chem. Phys. 115, 3840 (2001) and THEORY.md §6: the heat equation on
+    Persson, J. Chem. Phys. 115, 3840 (2001): the heat equation on
     0 < sigma < sigma_Y with absorbing walls has P = (2/sigma_Y) sum sin(n pi sigma0/sigma_Y)
     sin(n pi sigma/sigma_Y) exp(-n^2 pi^2 G_s).  Integrating P gives A_el; integrating the
     flux -dP/dsigma at sigma_Y over G (each mode gives sigma_Y^2 (1 - exp(-n^2 pi^2 G_s))/(n pi)^2)
@@ -825,7 +825,7 @@ def contact_area_no_adhesion(surface, pressure, e_star, zeta=None):
 
     Notes
     -----
-    THEORY.md §2-3 (Persson, J. Chem. Phys. 115, 3840 (2001), Eqs. 4-7 of the seed): all of the
+    Persson, J. Chem. Phys. 115, 3840 (2001), Eqs. 4-7 of the seed: all of the
     surface enters through G(zeta) = (pi/4) E*^2 integral_{q0}^{zeta q0} q^3 C(q) dq.
     """
     e_star_arr = as_float_array(e_star, "e_star", "Pa", ndim=(0,))

@@ -3,7 +3,7 @@
 Subcommands
 -----------
 figure2
-    The seed paper's PMMA scene (THEORY.md §7): A/A0 against the nominal pressure 0-100 MPa,
+    The seed paper's PMMA scene: A/A0 against the nominal pressure 0-100 MPa,
     without adhesion and, once adhesion is available, with Delta gamma = 0.06 J/m^2. Writes a CSV
     file and a PNG plot.
 contact
@@ -151,7 +151,7 @@ def _cmd_figure2(args) -> int:
     surface = pf.seed_scene()
     pressure = np.linspace(0.0, SEED_P_MAX, int(args.points))
 
-    print("Seed scene (Persson, PMMA on a silanised wafer; THEORY.md §7)")
+    print("Seed scene (Persson, PMMA on a silanised wafer)")
     print(f"  surface: {surface!r}")
     print(f"  E = {SEED_YOUNG_MODULUS:.3g} Pa; Poisson ratio nu = {nu:g} "
           f"{'assumed (the paper gives none)' if nu == SEED_POISSON_DEFAULT else 'given'}; "

@@ -22,7 +22,7 @@ and the contact theory sees the surface only through the diffusion time
 
     G(q) = \\frac{\\pi}{4} E^{*2} \\int_{q_0}^{q} q'^3 C(q') dq'            [Pa^2]
 
-(seed paper Eqs. 4-5 integrated over ζ; see ``THEORY.md`` §2).
+(seed paper Eqs. 4-5 integrated over ζ; Persson 2001).
 
 The public classes are :class:`CapillaryWaves` (seed Eq. 1), :class:`SelfAffine` (power law
 with roll-off) and :class:`TabulatedPSD` (measured spectra, log-log interpolated). All three
@@ -306,7 +306,7 @@ class Surface(abc.ABC):
         return math.sqrt(2.0 * math.pi * self.moment(3))
 
     def diffusion_time(self, q, e_star):
-        """Diffusion time G(q) of the stress distribution (THEORY.md §2).
+        """Diffusion time G(q) of the stress distribution.
 
         Parameters
         ----------
@@ -350,7 +350,7 @@ class Surface(abc.ABC):
         Notes
         -----
         Persson, Eur. Phys. J. E 8, 385 (2002); Persson et al., J. Phys.: Condens. Matter 17,
-        R1 (2005). It is U_el(ζ = 1) of THEORY.md §4 with P = S = 1.
+        R1 (2005). It is U_el(ζ = 1) with P = S = 1.
         """
         e = _positive_scalar(e_star, "e_star", "Pa")
         return 0.5 * math.pi * e * self.moment(2)
@@ -857,7 +857,7 @@ def seed_scene() -> CapillaryWaves:
 
     Notes
     -----
-    Persson, arXiv:cond-mat/0512604 (THEORY.md §7).
+    Persson, arXiv:cond-mat/0512604.
     """
     return CapillaryWaves(
         temperature=370.0, surface_tension=0.04, q_c=1.7e9, q0=2.0 * np.pi / 1e-4, q1=7e9

@@ -356,7 +356,7 @@ def test_linear_density_integrates_to_area_and_load(p, G, a, b):
 
 @pytest.mark.parametrize("p,G,a,b", LINEAR_CASES)
 def test_linear_identities_in_G(p, G, a, b):
-    """A(G) + int_0^G g = 1 and int sigma P = sigma0 + int_0^G sigma_a g dG' (THEORY §4)."""
+    """A(G) + int_0^G g = 1 and int sigma P = sigma0 + int_0^G sigma_a g dG'."""
     rate = lambda g: mp.mpf(float(an.linear_boundary_detachment_rate(p, float(g), a, b)))  # noqa: E731
     pts = [0, G * 1e-3, G * 0.05, G * 0.3, G]
     with mp.workdps(20):

@@ -1,6 +1,6 @@
 """Hypothesis properties of the stress-diffusion kernel over generated physical scenes.
 
-Scenes (THEORY.md §2-3): a geometric grid of diffusion times G spanning 2..8 decades with
+Scenes: a geometric grid of diffusion times G spanning 2..8 decades with
 sqrt(G_last) anywhere from 1 Pa to 1e9 Pa, nominal pressures 1e-4..10 sqrt(G_last), and walls
 sigma_a that are zero, linear in G (a + b G, b of either sign) or piecewise linear.
 """
@@ -145,7 +145,7 @@ def test_books_piecewise_wall(scene):
 # Two minimal cases hypothesis found (the area overshot 1 by ~1e-11 after extrapolation before
 # the clip that keeps A + detached = 1), kept as explicit examples:
 # a wall at rest that starts to move, and the area one step later exceeds 1 by ~5e-11 while the
-# result reports status 0 ("ok"). Physically A <= 1 always (THEORY.md §5.2: keep A in [0, 1]).
+# result reports status 0 ("ok"). Physically A <= 1 always.
 _G14 = np.geomspace(0.01, 1.0, 14)
 _OVERSHOOT_LINEAR = (_G14, 1.0, np.array([0.0866]), (1.0 - 0.815 * _G14)[None, :])
 _G31 = np.array([0.00184342, 0.0022739, 0.0028049, 0.00345989, 0.00426784, 0.00526446,

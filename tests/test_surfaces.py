@@ -180,7 +180,7 @@ def test_capillary_diffusion_time_closed_form():
         for gi, qi in zip(g, q):
             expect = pref * mp.log((gam_mp + kap_mp * mp.mpf(qi) ** 2) / (gam_mp + kap_mp * mp.mpf(s.q0) ** 2))
             assert_rel(gi, expect, RTOL_EXACT, f"G({qi:g})")
-    # sqrt(G1) ~ 3e8 Pa for the seed scene (THEORY.md §2)
+    # sqrt(G1) ~ 3e8 Pa for the seed scene
     assert 1e8 < math.sqrt(s.diffusion_time(s.q1, e_star)) < 1e9
 
 

@@ -243,7 +243,7 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
     if (not converged and status == st.OK and sigma0 < 0.0
             and (lost >= LOST_ITERATIONS or area[n - 1] <= rtol)):
         # nominal tension and the iteration has left the contact branch: the surfaces
-        # separate (A = 0), which is the fixed point reached (THEORY.md section 4)
+        # separate (A = 0), which is the fixed point reached
         for i in range(n):
             area[i] = 0.0
             x[i] = 0.0

@@ -1,6 +1,6 @@
 """The stress diffusion with an absorbing wall, one pressure at a time (``@njit``).
 
-Problem (THEORY.md section 2), in diffusion time G:
+Problem, in diffusion time G:
     dP/dG = d2P/dsigma2,  P(sigma, 0) = delta(sigma - sigma0),  P(-sigma_a(G), G) = 0,
 with sigma_a(G) piecewise linear in G between schedule points (a flat stretch of G is a jump).
 

@@ -47,7 +47,7 @@ def linear_wall_area_moment(y0, b, G):
 
     Distance to the wall y = sigma + sigma_a(G) with sigma_a = a + b G, start y0 > 0 at G = 0.
     Returns (A, M1) with A = int_0^inf Q dy and M1 = int_0^inf y Q dy, where
-    Q = N(y - y0 - bG; 2G) - exp(-b y0) N(y + y0 - bG; 2G)   (THEORY.md section 3).
+    Q = N(y - y0 - bG; 2G) - exp(-b y0) N(y + y0 - bG; 2G)  .
     M1 = (y0 + bG) Phi(u1) - (bG - y0) exp(-b y0) Phi(u2), u1,2 = (bG +- y0)/sqrt(2G).
     """
     if G <= 0.0:
