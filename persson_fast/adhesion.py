@@ -21,7 +21,7 @@ from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
 from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
 from .results import ContactResult, summarize_status
-from .sweep import interleave
+from .sweep import choose_parallel, interleave
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
 
@@ -37,7 +37,6 @@ ZETA_PER_DECADE_ADHESION = 46
 #: in ln(zeta - 1) from NEAR_ONE_MIN to 1 with this fraction of the per-decade density
 NEAR_ONE_MIN = 1e-6
 NEAR_ONE_FRACTION = 0.5
-PARALLEL_MIN_PRESSURES = 4
 
 
 def adhesion_zeta(surface, rtol: float = 1e-6, per_decade: int | None = None) -> np.ndarray:
@@ -99,8 +98,7 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None)
     residual = np.zeros(n_p)
     if x_init is None:
         x_init = np.full((n_p, n_z), -1.0)
-    if parallel is None:
-        parallel = n_p >= PARALLEL_MIN_PRESSURES
+    parallel = choose_parallel(parallel, n_p, adhesive_sweep_parallel)
     kernel = adhesive_sweep_parallel if parallel else adhesive_sweep_serial
     timings = {}
     if not _compiled(kernel):
@@ -119,6 +117,16 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None)
     inverse[order] = np.arange(n_p)
     outs = [o[inverse] for o in outs]
     return outs, status[inverse], iterations[inverse], residual[inverse], timings
+
+
+def warm_adhesion(parallel: bool = True) -> None:
+    """Compile (or load) the adhesive sweep kernels on a tiny problem."""
+    G = np.array([0.0, 1.0, 2.0])
+    c = np.array([0.1, 0.2, 0.3])
+    w = np.array([0.1, 0.1])
+    ctl = _controls(None)
+    for par in ((False, True) if parallel else (False,)):
+        _run(G, c, w, w, -1.0, np.array([1.0]), 1e-2, par, ctl)
 
 
 def _controls(overrides):

@@ -87,7 +87,9 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
         Crank-Nicolson steps replaced by implicit-Euler half steps after a wall jump
         (Rannacher damping), >= 0.
     parallel : bool or None
-        Spread pressures over threads (None: when there are >= 4 pressures).
+        Spread pressures over threads. None: when the parallel kernel is compiled (it is not
+        cached on disk; ``pf.warmup()`` compiles it, ~4 s) and there are >= 4 pressures, or
+        for >= 1000 pressures.
 
     Returns
     -------
@@ -236,7 +238,9 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
         Magnifications of the returned profiles, starting at 1 (default: 8 per decade plus the
         spectrum's breakpoints). [-]
     parallel : bool or None
-        Spread pressures over threads (None: when there are >= 4 pressures).
+        Spread pressures over threads. None: when the parallel kernel is compiled (it is not
+        cached on disk; ``pf.warmup()`` compiles it, ~4 s) and there are >= 4 pressures, or
+        for >= 1000 pressures.
     adhesion_controls : dict or None
         Fixed-point controls: ``max_iter`` (200), ``m_hist`` (Anderson depth, 5; 0 = plain
         relaxation), ``omega`` (relaxation, 0.5), ``n_damp`` (2).

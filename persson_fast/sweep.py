@@ -13,6 +13,20 @@ from ._kernels.sweep import sweep_parallel, sweep_serial
 
 #: below this many pressures the thread start-up costs more than it saves
 PARALLEL_MIN_PRESSURES = 4
+#: the parallel kernels are not cached on disk, so compiling them costs ~4 s per process
+#: (2-core machine); before they are compiled, only a batch this large goes parallel
+PARALLEL_COMPILE_PRESSURES = 1000
+
+
+def choose_parallel(parallel, n_p: int, kernel) -> bool:
+    """The ``parallel=None`` cost model: threads when the parallel kernel is compiled and
+    there are >= PARALLEL_MIN_PRESSURES pressures, or when the batch is large enough
+    (>= PARALLEL_COMPILE_PRESSURES) to pay for compiling it. ``pf.warmup()`` compiles it."""
+    if parallel is not None:
+        return bool(parallel)
+    if len(getattr(kernel, "signatures", ())) > 0:
+        return n_p >= PARALLEL_MIN_PRESSURES
+    return n_p >= PARALLEL_COMPILE_PRESSURES
 
 
 def interleave(n: int) -> np.ndarray:
@@ -43,7 +57,7 @@ def run_sweep(G, sa_rows, pressures, *, rtol, n_damp=2, parallel=None):
     pressures : (n_p,) float64 -- nominal pressures. [Pa]
     rtol : float -- target relative accuracy. [-]
     n_damp : int -- Rannacher damping steps after wall jumps.
-    parallel : bool or None -- None: parallel when there are enough pressures.
+    parallel : bool or None -- None: see :func:`choose_parallel`.
 
     Returns
     -------
@@ -61,8 +75,7 @@ def run_sweep(G, sa_rows, pressures, *, rtol, n_damp=2, parallel=None):
     out = {name: np.zeros((n_p, n_t)) for name in
            ("area", "load", "detached_area", "detached_load", "error_estimate")}
     status = np.zeros(n_p, dtype=np.int64)
-    if parallel is None:
-        parallel = n_p >= PARALLEL_MIN_PRESSURES
+    parallel = choose_parallel(parallel, n_p, sweep_parallel)
     kernel = sweep_parallel if parallel else sweep_serial
     timings = {}
     if not _compiled(kernel):
@@ -106,6 +119,8 @@ def _warm(kernel) -> None:
 
 def warmup(parallel: bool = True) -> dict:
     """Compile (or load from the cache) the sweep kernels now; return the seconds spent."""
+    from .adhesion import warm_adhesion
+
     timings = {}
     for name, kernel in (("serial", sweep_serial), ("parallel", sweep_parallel)):
         if name == "parallel" and not parallel:
@@ -113,4 +128,7 @@ def warmup(parallel: bool = True) -> dict:
         t0 = time.perf_counter()
         _warm(kernel)
         timings[name] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    warm_adhesion(parallel)
+    timings["adhesion"] = time.perf_counter() - t0
     return timings
