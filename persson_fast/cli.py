@@ -117,6 +117,14 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--q0", type=float, metavar="Q0", help="smallest wavevector [1/m]")
     g.add_argument("--q1", type=float, metavar="Q1", help="largest wavevector [1/m]")
     ct.add_argument("--e-star", type=float, metavar="E", help="effective modulus E/(1-nu^2) [Pa]")
+    g = ct.add_argument_group("adhesion")
+    g.add_argument("--work-of-adhesion", type=float, metavar="DGAMMA",
+                   help="work of adhesion [J/m^2] (default 0: no adhesion)")
+    g.add_argument("--energy-correction", type=float, metavar="GAMMA_S",
+                   help="gamma_S of S = gamma_S + (1 - gamma_S) P^2 (default: S = 1)")
+    g.add_argument("--detachment-prefactor", type=float, metavar="BETA",
+                   help="beta of seed Eq. 8 (default 1/sqrt 2)")
+    g.add_argument("--pull-off", action="store_true", help="also compute the pull-off stress")
     pr = ct.add_mutually_exclusive_group()
     pr.add_argument("--pressure", type=float, nargs="+", metavar="P",
                     help="nominal pressures [Pa]")
@@ -305,7 +313,8 @@ def _number(value, key):
 def _resolve_contact(args) -> dict:
     """Merge the TOML file (if any) and the flags (which win) into one settings dict."""
     cfg = _load_toml(args.config) if args.config else {}
-    known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv"}
+    known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
+                 "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -371,8 +380,17 @@ def _resolve_contact(args) -> dict:
     method = args.method or cfg.get("method", "auto")
     rtol = args.rtol if args.rtol is not None else _number(cfg.get("rtol", 1e-6), "rtol")
     csv_path = args.csv or cfg.get("csv")
+    adhesion = {}
+    for key in ("work_of_adhesion", "energy_correction", "detachment_prefactor"):
+        value = getattr(args, key)
+        if value is None and key in cfg:
+            value = _number(cfg[key], key)
+        if value is not None:
+            adhesion[key] = value
+    want_pull_off = bool(args.pull_off or cfg.get("pull_off", False))
     return {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
-            "method": method, "rtol": rtol, "csv": csv_path}
+            "method": method, "rtol": rtol, "csv": csv_path, "adhesion": adhesion,
+            "pull_off": want_pull_off}
 
 
 def _pressure_range(pmin, pmax, n) -> np.ndarray:
@@ -397,7 +415,7 @@ def _cmd_contact(args) -> int:
     e_star = s["e_star"]
     t0 = time.perf_counter()
     res = pf.solve_contact(surface, s["pressure"], e_star=e_star, method=s["method"],
-                           rtol=s["rtol"])
+                           rtol=s["rtol"], **s["adhesion"])
     elapsed = time.perf_counter() - t0
     slope = surface.slope_rms()
     print(f"surface: {surface!r}")
@@ -410,6 +428,15 @@ def _cmd_contact(args) -> int:
         print(f"{p:14.6g}  {a:12.6g}  {mp_s}  {'ok' if st == 0 else f'code {int(st)}'}")
     if not res.success:
         print(f"warning: {res.message}")
+    if s["adhesion"].get("work_of_adhesion", 0.0) > 0:
+        print(f"adhesion: work of adhesion {s['adhesion']['work_of_adhesion']:g} J/m^2, sticky "
+              f"(gamma_eff(1) > 0): {bool(res.sticky[0])}, fixed-point iterations <= "
+              f"{int(res.iterations.max())}")
+        if s["pull_off"]:
+            t1 = time.perf_counter()
+            sigma_c = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
+                                  **s["adhesion"])
+            print(f"pull-off stress: {sigma_c:.5g} Pa ({time.perf_counter() - t1:.3g} s)")
     timing = f"time: {elapsed:.3g} s"
     if "compile" in res.timings:
         timing += f" (compile {res.timings['compile']:.3g} s)"
@@ -470,6 +497,9 @@ def main(argv=None) -> int:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except OSError as exc:  # an output file or folder that cannot be written
+        print(f"error: {exc}", file=sys.stderr)
+        return 1
+    except RuntimeError as exc:  # a numerical failure the package reports (e.g. pull_off)
         print(f"error: {exc}", file=sys.stderr)
         return 1
     except KeyboardInterrupt:
