@@ -128,7 +128,6 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
     err = np.empty(n)
     u = np.empty(n)
     g = np.empty(n)
-    rows = np.empty((1, n))
     ones = np.ones(n)
     # start: the given profile, or the detachment stress of full contact
     if x_init[0] >= 0.0:
@@ -149,14 +148,12 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
     it_mark = 0
     while it < max_iter:
         it += 1
-        for i in range(n):
-            rows[0, i] = x[i]
         rtol_it = 0.1 * residual
         if rtol_it > 1e-3:
             rtol_it = 1e-3
         if rtol_it < rtol or final_pass:
             rtol_it = rtol
-        kstat = solve_one(G, rows[0], sigma0, rtol_it, n_damp, area, load, det_a, det_l, err)
+        kstat = solve_one(G, x, sigma0, rtol_it, n_damp, area, load, det_a, det_l, err)
         if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
             break

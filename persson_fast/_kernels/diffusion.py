@@ -139,9 +139,19 @@ def _wall_always_far(G_k, sa_k, sa0, k_far):
                     yc = 1.0 + sa_k[k - 1] + b * (g_star - G_k[k - 1]) - sa0
                     if yc < k_far * math.sqrt(2.0 * g_star):
                         return False
-        elif k > 0 and sa_k[k] < sa_k[k - 1] and 1.0 + sa_k[k] - sa0 <= 0.0:
-            return False
     return True
+
+
+@njit_serial
+def _fill_state(k_from, k_to, area, load, det_area, det_load, out_area, out_load,
+                out_det_area, out_det_load, out_error):
+    """Write one exact state (no error) into the outputs k_from .. k_to - 1."""
+    for k in range(k_from, k_to):
+        out_area[k] = area
+        out_load[k] = load
+        out_det_area[k] = det_area
+        out_det_load[k] = det_load
+        out_error[k] = 0.0
 
 
 @njit_serial
@@ -525,12 +535,8 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
         if sigma0 + sa[k] <= 0.0:
             separated = True
     if separated:
-        for k in range(nt):
-            out_area[k] = 0.0
-            out_load[k] = 0.0
-            out_det_area[k] = 1.0
-            out_det_load[k] = -sigma0
-            out_error[k] = 0.0
+        _fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, out_area, out_load, out_det_area,
+                    out_det_load, out_error)
         return st.OK
     y0 = sigma0 + sa0
     # scaled schedule with a leading point at G = 0
@@ -545,12 +551,8 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     sig0s = sigma0 / y0
     # the wall never comes near the distribution: the free solution is exact (A = 1)
     if _wall_always_far(G_k, sa_k, sa0s, K_ALWAYS_FAR):
-        for k in range(nt):
-            out_area[k] = 1.0
-            out_load[k] = sigma0
-            out_det_area[k] = 0.0
-            out_det_load[k] = 0.0
-            out_error[k] = 0.0
+        _fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, out_area, out_load, out_det_area,
+                    out_det_load, out_error)
         return st.OK
     # first linear piece after G = 0
     i_piece = 1
@@ -602,12 +604,8 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     if start_linear:
         a_start, _ = linear_wall_area_moment(1.0, b_lin, g_start)
         if a_start <= 0.0:
-            for k in range(i_first, nt + 1):
-                out_area[k - 1] = 0.0
-                out_load[k - 1] = 0.0
-                out_det_area[k - 1] = 1.0
-                out_det_load[k - 1] = -sigma0
-                out_error[k - 1] = 0.0
+            _fill_state(i_first - 1, nt, 0.0, 0.0, 1.0, -sigma0, out_area, out_load,
+                        out_det_area, out_det_load, out_error)
             return st.OK
     # grid: domain, spacing (tolerance, start width, Peclet), step density
     status = st.OK
@@ -707,10 +705,10 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     fl = np.empty(nt + 1)
     fd = np.empty(nt + 1)
     fdl = np.empty(nt + 1)
-    s1, leak1 = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_c + 1,
+    s1, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_c + 1,
                       h_c, nper, nper_width, 1, n_damp, coarsen_at, p[: n_c + 1], tmp[: n_c + 1], lo, di, up, a_lo, a_di,
                       a_up, rhs, scratch, ca, cl, cd, cdl)
-    s2, leak2 = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_f + 1,
+    s2, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_f + 1,
                       0.5 * h_c, nper, nper_width, 2, n_damp, coarsen_at, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs,
                       scratch, fa, fl, fd, fdl)
     if s1 != st.OK:
