@@ -19,9 +19,9 @@ import numpy as np
 
 from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
 from ._kernels.status import NOT_CONVERGED, WALL_JUMP
-from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
-from .results import ContactResult, summarize_status
-from .sweep import choose_parallel, interleave
+from ._validation import as_float_array, check_finite
+from .results import ContactResult, mean_contact_pressure, summarize_status
+from .sweep import choose_parallel, interleave, is_compiled
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
 
@@ -86,10 +86,6 @@ def _scene_arrays(surface, zeta, e_star, work_of_adhesion, detachment_prefactor)
     return G / scale**2, c_dim / scale, np.maximum(wa, 0.0), np.maximum(wb, 0.0), scale, G
 
 
-def _compiled(func) -> bool:
-    return len(getattr(func, "signatures", ())) > 0
-
-
 def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None):
     n_p, n_z = p_scaled.size, G.size
     outs = [np.zeros((n_p, n_z)) for _ in range(8)]
@@ -101,7 +97,7 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None)
     parallel = choose_parallel(parallel, n_p, adhesive_sweep_parallel)
     kernel = adhesive_sweep_parallel if parallel else adhesive_sweep_serial
     timings = {}
-    if not _compiled(kernel):
+    if not is_compiled(kernel):
         t0 = time.perf_counter()
         kernel(G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
                controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs], status[:1],
@@ -169,34 +165,33 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     if not zeta_given:
         zeta = adhesion_zeta(surface, rtol)
     gamma_s = -1.0 if energy_correction is None else float(energy_correction)
-    # the fixed point on two nested grids, Richardson-extrapolated at the coarse nodes
-    results = []
+    # the fixed point on two nested grids, Richardson-extrapolated at the coarse nodes; the
+    # fine grid starts from the coarse solution (interpolated in ln zeta)
+    fine = refine_zeta(zeta)
     timings = {}
-    x_init = None
-    if start is not None:
-        x_init = np.array(start, dtype=float) / _scene_arrays(
-            surface, zeta, e_star, work_of_adhesion, detachment_prefactor)[4]
-    for grid in (zeta, refine_zeta(zeta)):
+
+    def fixed_point(grid, start_pa):
         G, c, wa, wb, scale, G_dim = _scene_arrays(surface, grid, e_star, work_of_adhesion,
                                                    detachment_prefactor)
+        x_init = None if start_pa is None else start_pa / scale
         outs, status, iterations, residual, tim = _run(G, c, wa, wb, gamma_s, p / scale, rtol,
                                                        parallel, ctl, x_init)
-        # the fine grid starts from the coarse solution (interpolated in ln zeta)
-        lz, lzf = np.log(grid), np.log(refine_zeta(grid))
-        x_init = np.array([np.interp(lzf, lz, row) for row in outs[1]])
-        x_init[status != 0] = -1.0
-        outs = [o * (scale if k in (1, 4, 6) else 1.0) for k, o in enumerate(outs)]
-        results.append((outs, status, iterations, residual, G_dim))
         for key, val in tim.items():
             timings[key] = timings.get(key, 0.0) + val
-    (oc, sc, ic, rc, G_dim), (of, sf, if_, rf, _) = results
+        outs = [o * (scale if k in (1, 4, 6) else 1.0) for k, o in enumerate(outs)]
+        return outs, status, iterations, residual, G_dim
+
+    oc, sc, ic, rc, G_dim = fixed_point(zeta, None if start is None else np.array(start, float))
+    start_fine = np.array([np.interp(np.log(fine), np.log(zeta), row) for row in oc[1]])
+    start_fine[sc != 0] = -np.inf          # a failed coarse row starts from full contact
+    of, sf, if_, rf, _ = fixed_point(fine, start_fine)
     of = [o[:, 0::2] for o in of]
     ex = [(4.0 * f_ - c_) / 3.0 for f_, c_ in zip(of, oc)]
     # near pull-off one grid may still have contact and the other not: no extrapolation there
     split = (oc[0][:, -1] > 0) != (of[0][:, -1] > 0)
     for k in range(len(ex)):
         ex[k][split] = of[k][split]
-    area_z, sa, g, u, load, det_a, det_l, err = ex
+    area_z, sa, g, u, load, det_a, det_l, _ = ex
     # an extrapolated profile outside [0, 1] is a zeta-grid error: clip it and charge the
     # overshoot to the error estimate
     over = np.maximum(area_z - 1.0, 0.0) + np.maximum(-area_z, 0.0)
@@ -208,24 +203,20 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     status = np.where(sf != 0, sf, sc)
     iterations = ic + if_
     residual = np.maximum(rc, rf)
-    scale = 1.0
     area = area_z[:, -1].copy()
-    load1 = load[:, -1] * scale
-    with np.errstate(invalid="ignore", divide="ignore"):
-        mean_p = np.where(area > 0, load1 / np.where(area > 0, area, 1.0), np.nan)
     success, message = summarize_status(status)
     if np.any(status == NOT_CONVERGED):
         bad = np.flatnonzero(status == NOT_CONVERGED)
         message += f"; largest fixed-point residual {residual[bad].max():.3g} after {iterations[bad].max()} iterations"
-    area = np.clip(area, 0.0, 1.0)
     return ContactResult(
-        pressure=p, area=area, zeta=zeta, G=G_dim, area_zeta=area_z, sigma_a=sa * scale,
-        gamma_eff=g * work_of_adhesion, load=load1, mean_contact_pressure=mean_p,
-        detached_area=det_a[:, -1].copy(), detached_load=det_l[:, -1] * scale,
+        pressure=p, area=area, zeta=zeta, G=G_dim, area_zeta=area_z, sigma_a=sa,
+        gamma_eff=g * work_of_adhesion, load=load[:, -1].copy(),
+        mean_contact_pressure=mean_contact_pressure(load[:, -1], area),
+        detached_area=det_a[:, -1].copy(), detached_load=det_l[:, -1].copy(),
         error_estimate=err[:, -1].copy(), method="cn", status=status, success=success,
         message=message, timings=timings, elastic_energy=u * work_of_adhesion,
         iterations=iterations, residual=residual, sticky=g[:, 0] > 0,
-        load_zeta=load * scale, detached_load_zeta=det_l * scale, zeta_error=zeta_err,
+        load_zeta=load, detached_load_zeta=det_l, zeta_error=zeta_err,
     )
 
 
@@ -262,16 +253,11 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     Raises ``RuntimeError`` if the solve at p_nom = 0 fails or a solve is flagged for another
     reason (resolution cap, far-field leak).
     """
-    from .api import _check_rtol, _check_zeta
+    from .api import _check_rtol, _check_scene_args, _check_zeta
 
     rtol = _check_rtol(rtol)
-    e = as_float_array(e_star, "e_star", "Pa", ndim=(0,))
-    check_positive(e, "e_star", "Pa")
-    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
-    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
-    beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
-    check_positive(beta, "detachment_prefactor", "-")
-    e, dg, beta = float(e), float(dg), float(beta)
+    e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
+                                    energy_correction)
     if dg == 0.0:
         return (0.0, {"solves": 0, "unconverged": 0, "bracket": (0.0, 0.0)}) if full_output else 0.0
     z = adhesion_zeta(surface, rtol) if zeta is None else _check_zeta(zeta, surface)

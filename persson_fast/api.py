@@ -15,7 +15,7 @@ from ._validation import (
 )
 from .adhesion import solve_adhesive_contact
 from .methods import check_method
-from .results import ContactResult, DiffusionResult, summarize_status
+from .results import ContactResult, DiffusionResult, mean_contact_pressure, summarize_status
 from .sweep import run_sweep
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
@@ -212,6 +212,28 @@ def _check_zeta(zeta, surface) -> np.ndarray:
     return z
 
 
+def _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
+                      energy_correction):
+    """Validate the scene arguments shared by solve_contact and pull_off; return floats."""
+    e = as_float_array(e_star, "e_star", "Pa", ndim=(0,))
+    check_positive(e, "e_star", "Pa")
+    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
+    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
+    beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
+    check_positive(beta, "detachment_prefactor", "-")
+    if energy_correction is not None:
+        gs = as_float_array(energy_correction, "energy_correction", "-", ndim=(0,))
+        check_finite(gs, "energy_correction", "-")
+        if not 0.0 <= float(gs) <= 1.0:
+            raise ValueError(
+                f"energy_correction must lie in [0, 1] [-]; got energy_correction = {float(gs)!r}"
+            )
+    for attr in ("q0", "q1", "diffusion_time", "breakpoints"):
+        if not hasattr(surface, attr):
+            raise ValueError(f"surface must be a persson_fast surface model; {type(surface).__name__} has no {attr!r}")
+    return float(e), float(dg), float(beta)
+
+
 def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_correction=None,
                   detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None,
                   parallel=None, adhesion_controls=None) -> ContactResult:
@@ -242,7 +264,7 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
         cached on disk; ``pf.warmup()`` compiles it, ~4 s) and there are >= 4 pressures, or
         for >= 1000 pressures.
     adhesion_controls : dict or None
-        Fixed-point controls: ``max_iter`` (200), ``m_hist`` (Anderson depth, 5; 0 = plain
+        Fixed-point controls: ``max_iter`` (100), ``m_hist`` (Anderson depth, 5; 0 = plain
         relaxation), ``omega`` (relaxation, 0.5), ``n_damp`` (2).
 
     Returns
@@ -261,24 +283,8 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     """
     method = check_method(method)
     rtol = _check_rtol(rtol)
-    e = as_float_array(e_star, "e_star", "Pa", ndim=(0,))
-    check_positive(e, "e_star", "Pa")
-    e = float(e)
-    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
-    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
-    dg = float(dg)
-    beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
-    check_positive(beta, "detachment_prefactor", "-")
-    if energy_correction is not None:
-        gs = as_float_array(energy_correction, "energy_correction", "-", ndim=(0,))
-        check_finite(gs, "energy_correction", "-")
-        if not 0.0 <= float(gs) <= 1.0:
-            raise ValueError(
-                f"energy_correction must lie in [0, 1] [-]; got energy_correction = {float(gs)!r}"
-            )
-    for attr in ("q0", "q1", "diffusion_time", "breakpoints"):
-        if not hasattr(surface, attr):
-            raise ValueError(f"surface must be a persson_fast surface model; {type(surface).__name__} has no {attr!r}")
+    e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
+                                    energy_correction)
     z = _check_zeta(zeta, surface) if (zeta is not None or dg == 0) else None
     if dg > 0:
         return solve_adhesive_contact(surface, pressure, z, e_star=e, work_of_adhesion=dg,
@@ -309,13 +315,11 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
         err = out["error_estimate"][:, -1]
         status = out["status"]
     area = area_z[:, -1].copy()
-    with np.errstate(invalid="ignore", divide="ignore"):
-        mean_p = np.where(area > 0, load / np.where(area > 0, area, 1.0), np.nan)
     success, message = summarize_status(status)
     zeros = np.zeros((p.size, z.size))
     return ContactResult(
         pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=zeros, gamma_eff=zeros.copy(),
-        load=load, mean_contact_pressure=mean_p, detached_area=det_a, detached_load=det_l,
+        load=load, mean_contact_pressure=mean_contact_pressure(load, area), detached_area=det_a, detached_load=det_l,
         error_estimate=err, method=use, status=status, success=success, message=message,
         timings=timings,
     )

@@ -22,6 +22,14 @@ def summarize_status(status: np.ndarray) -> tuple[bool, str]:
     return False, "; ".join(parts)
 
 
+def mean_contact_pressure(load, area):
+    """Mean stress in the contact, load / area; nan where there is no contact. [Pa]"""
+    load = np.asarray(load, dtype=float)
+    area = np.asarray(area, dtype=float)
+    safe = np.where(area > 0, area, 1.0)
+    return np.where(area > 0, load / safe, np.nan)
+
+
 @dataclass(frozen=True)
 class DiffusionResult:
     """Result of :func:`persson_fast.solve_diffusion`.

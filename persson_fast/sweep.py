@@ -24,7 +24,7 @@ def choose_parallel(parallel, n_p: int, kernel) -> bool:
     (>= PARALLEL_COMPILE_PRESSURES) to pay for compiling it. ``pf.warmup()`` compiles it."""
     if parallel is not None:
         return bool(parallel)
-    if len(getattr(kernel, "signatures", ())) > 0:
+    if is_compiled(kernel):
         return n_p >= PARALLEL_MIN_PRESSURES
     return n_p >= PARALLEL_COMPILE_PRESSURES
 
@@ -43,7 +43,8 @@ def interleave(n: int) -> np.ndarray:
     return np.concatenate([np.arange(i, n, t) for i in range(t)]) if n > t else np.arange(n)
 
 
-def _compiled(func) -> bool:
+def is_compiled(func) -> bool:
+    """True once a numba dispatcher holds a compiled signature."""
     return len(getattr(func, "signatures", ())) > 0
 
 
@@ -78,7 +79,7 @@ def run_sweep(G, sa_rows, pressures, *, rtol, n_damp=2, parallel=None):
     parallel = choose_parallel(parallel, n_p, sweep_parallel)
     kernel = sweep_parallel if parallel else sweep_serial
     timings = {}
-    if not _compiled(kernel):
+    if not is_compiled(kernel):
         t0 = time.perf_counter()
         _warm(kernel)
         timings["compile"] = time.perf_counter() - t0
