@@ -20,6 +20,7 @@ import numpy as np
 from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
 from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite
+from .methods import METHODS, check_serves, choose_auto
 from .results import ContactResult, mean_contact_pressure, summarize_status
 from .sweep import choose_parallel, interleave, is_compiled
 
@@ -86,7 +87,7 @@ def _scene_arrays(surface, zeta, e_star, work_of_adhesion, detachment_prefactor)
     return G / scale**2, c_dim / scale, np.maximum(wa, 0.0), np.maximum(wb, 0.0), scale, G
 
 
-def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None):
+def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None, variant=0):
     n_p, n_z = p_scaled.size, G.size
     outs = [np.zeros((n_p, n_z)) for _ in range(8)]
     status = np.zeros(n_p, dtype=np.int64)
@@ -99,13 +100,13 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None)
     timings = {}
     if not is_compiled(kernel):
         t0 = time.perf_counter()
-        kernel(G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
+        kernel(variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
                controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs], status[:1],
                iterations[:1], residual[:1])
         timings["compile"] = time.perf_counter() - t0
     order = interleave(n_p) if parallel else np.arange(n_p)
     t0 = time.perf_counter()
-    kernel(G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled[order]), rtol,
+    kernel(variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled[order]), rtol,
            controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
            np.ascontiguousarray(x_init[order]), *outs, status, iterations, residual)
     timings["solve"] = time.perf_counter() - t0
@@ -153,11 +154,10 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     (n_p, n_z) detachment stresses [Pa] on ``zeta`` to start the fixed point from
     (continuation); default the full-contact detachment stress.
     """
-    if method == "analytic":
-        raise ValueError(
-            "method 'analytic' has no closed form with adhesion (work_of_adhesion > 0); "
-            "use method='cn' or 'auto'"
-        )
+    if method == "auto":
+        method = choose_auto("adhesion")
+    check_serves(method, adhesion=True)
+    variant = int(METHODS[method]["variant"])
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))
     check_finite(p, "pressure", "Pa")
     p = np.atleast_1d(p).astype(float)
@@ -175,7 +175,7 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
                                                    detachment_prefactor)
         x_init = None if start_pa is None else start_pa / scale
         outs, status, iterations, residual, tim = _run(G, c, wa, wb, gamma_s, p / scale, rtol,
-                                                       parallel, ctl, x_init)
+                                                       parallel, ctl, x_init, variant)
         for key, val in tim.items():
             timings[key] = timings.get(key, 0.0) + val
         outs = [o * (scale if k in (1, 4, 6) else 1.0) for k, o in enumerate(outs)]
@@ -213,7 +213,7 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
         gamma_eff=g * work_of_adhesion, load=load[:, -1].copy(),
         mean_contact_pressure=mean_contact_pressure(load[:, -1], area),
         detached_area=det_a[:, -1].copy(), detached_load=det_l[:, -1].copy(),
-        error_estimate=err[:, -1].copy(), method="cn", status=status, success=success,
+        error_estimate=err[:, -1].copy(), method=method, status=status, success=success,
         message=message, timings=timings, elastic_energy=u * work_of_adhesion,
         iterations=iterations, residual=residual, sticky=g[:, 0] > 0,
         load_zeta=load, detached_load_zeta=det_l, zeta_error=zeta_err,

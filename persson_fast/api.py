@@ -14,7 +14,7 @@ from ._validation import (
     check_positive,
 )
 from .adhesion import solve_adhesive_contact
-from .methods import check_method
+from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, mean_contact_pressure, summarize_status
 from .sweep import run_sweep
 
@@ -64,7 +64,7 @@ def _is_linear(G: np.ndarray, rows: np.ndarray) -> bool:
 
 
 def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=2,
-                    parallel=None) -> DiffusionResult:
+                    parallel=None, level=None) -> DiffusionResult:
     """Solve the stress diffusion with a prescribed absorbing wall.
 
     Parameters
@@ -78,11 +78,17 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
     sigma_a : float or array_like, shape (n_t,) or (n_p, n_t)
         Detachment stress: the wall sits at -sigma_a(G), linear in G between the given points
         and equal to sigma_a[0] before G[0]. [Pa]
-    method : {"cn", "analytic", "auto"}
-        "analytic" needs a wall linear in G (zero included); "auto" takes it where it
-        applies and "cn" otherwise.
+    method : str
+        A name in :data:`persson_fast.METHODS`: "cn" (default), "cn-plain",
+        "implicit-euler", "fixed-grid", "bnr", "analytic" (a wall linear in G, zero
+        included) or "auto" (the cheapest that meets rtol, see ``AUTO_POLICY``). A method
+        that cannot serve the wall (jumps, non-linear) raises a ValueError.
     rtol : float
         Target relative accuracy of the area, in [1e-12, 0.1]. [-]
+    level : int or None
+        Explicit resolution level >= 0 of a compiled method instead of rtol (each level
+        halves the node spacing and the step, level 2 of "cn" is the rtol = 1e-6 grid); for
+        convergence studies. [-]
     n_damp : int
         Crank-Nicolson steps replaced by implicit-Euler half steps after a wall jump
         (Rannacher damping), >= 0.
@@ -128,25 +134,29 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
         rows = sa.copy()
     if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
         raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
+    if level is not None and (not isinstance(level, (int, np.integer)) or not 0 <= level <= 12):
+        raise ValueError(f"level must be an integer in [0, 12] [-] or None; got level = {level!r}")
     linear = _is_linear(G, rows)
-    if method == "analytic" and not linear:
-        raise ValueError(
-            "method 'analytic' needs a wall linear in G (sigma_a = a + b G, no jumps); "
-            "use method='cn' or 'auto' for this sigma_a"
-        )
-    use = "analytic" if (method == "analytic" or (method == "auto" and linear)) else "cn"
+    jumps = bool(np.any((np.diff(G) == 0)[None, :] & (np.diff(rows, axis=1) != 0)))
+    kind = "linear" if linear else ("jumps" if jumps else "smooth")
+    use = choose_auto(kind) if method == "auto" else method
+    check_serves(use, jumps=jumps, nonlinear=not linear)
+    if use == "analytic" and level is not None:
+        raise ValueError("level applies to compiled methods only; got method = 'analytic'")
     t0 = time.perf_counter()
     if use == "analytic":
         out = _analytic_linear(G, rows, p)
         timings = {"solve": time.perf_counter() - t0}
     else:
-        out, timings = run_sweep(G, rows, p, rtol=rtol, n_damp=int(n_damp), parallel=parallel)
+        out, timings = run_sweep(G, rows, p, rtol=rtol, method=use,
+                                 level=-1 if level is None else int(level),
+                                 n_damp=int(n_damp), parallel=parallel)
     success, message = summarize_status(out["status"])
     return DiffusionResult(
         G=G, pressure=p, sigma_a=rows, area=out["area"], load=out["load"],
         detached_area=out["detached_area"], detached_load=out["detached_load"],
         error_estimate=out["error_estimate"], method=use, status=out["status"],
-        success=success, message=message, timings=timings,
+        success=success, message=message, timings=timings, counts=out.get("counts"),
     )
 
 
@@ -253,7 +263,10 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
         gamma_S of S = gamma_S + (1 - gamma_S) P(q)^2 (adhesion only); None: S = 1.
     detachment_prefactor : float
         beta of seed Eq. 8 (default 1/sqrt 2). [-]
-    method : {"auto", "analytic", "cn"}
+    method : str
+        A name in :data:`persson_fast.METHODS`; "auto" (default) takes the closed form
+        without adhesion and the cheapest measured grid method with it. The method used is
+        ``result.method``.
     rtol : float
         Target relative accuracy of the area. [-]
     zeta : array_like or None
@@ -295,7 +308,7 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     p = _check_pressure(pressure, allow_negative=False)
     G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
     G[0] = 0.0
-    use = "cn" if method == "cn" else "analytic"
+    use = choose_auto("linear") if method == "auto" else method
     t0 = time.perf_counter()
     if use == "analytic":
         area_z = analytic.images_area(p[:, None], G[None, :])
@@ -307,7 +320,8 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
         status = np.zeros(p.size, dtype=np.int64)
         timings = {"solve": time.perf_counter() - t0}
     else:
-        out, timings = run_sweep(G, np.zeros((p.size, z.size)), p, rtol=rtol, parallel=parallel)
+        out, timings = run_sweep(G, np.zeros((p.size, z.size)), p, rtol=rtol, method=use,
+                                 parallel=parallel)
         area_z = out["area"]
         load = out["load"][:, -1]
         det_a = out["detached_area"][:, -1]

@@ -1,25 +1,59 @@
-"""The registry of solution methods (a plain dict, as scipy's ``METHODS``)."""
+"""The registry of solution methods (a plain dict, as scipy's ``METHODS``), what each can
+serve, and the ``method="auto"`` policy.
+
+Every entry says:
+
+* ``family`` -- ``"closed-form"``, ``"grid"`` (the front-fixed similarity grid of
+  :mod:`persson_fast._kernels.diffusion`, ``variant`` selects the time scheme),
+  ``"fixed-grid"`` (a grid attached to the stress axis, the wall off-grid) or ``"integral"``
+  (the Volterra equation, no stress grid);
+* ``order`` -- the theoretical order of convergence in the resolution (node spacing and
+  step halved together), measured by ``python -m benchmarks.report``;
+* ``adhesion`` -- whether it can serve the self-consistent fixed point of seed Eqs. 8-9;
+* ``jumps`` -- whether it can serve a wall that jumps (a flat stretch of G);
+* ``nonlinear`` -- whether it can serve a wall that is not linear in G.
+"""
 from __future__ import annotations
 
 METHODS = {
     "analytic": {
         "description": "closed form: method of images (no adhesion) or a linearly moving wall",
-        "adhesion": False,
-        "order": None,
+        "family": "closed-form", "order": None, "adhesion": False, "jumps": False,
+        "nonlinear": False,
     },
     "cn": {
         "description": (
-            "Crank-Nicolson on a similarity-mapped grid with Rannacher damping after wall jumps, "
-            "Richardson-extrapolated (h, dt) -> (h/2, dt/2)"
+            "Crank-Nicolson on the front-fixed similarity grid, Rannacher start after wall "
+            "jumps, Richardson-extrapolated (h, dt) -> (h/2, dt/2)"
         ),
-        "adhesion": True,
-        "order": 4,
+        "family": "grid", "variant": 0, "order": 4, "adhesion": True, "jumps": True,
+        "nonlinear": True,
+    },
+    "cn-plain": {
+        "description": "Crank-Nicolson on the front-fixed similarity grid, no extrapolation",
+        "family": "grid", "variant": 1, "order": 2, "adhesion": True, "jumps": True,
+        "nonlinear": True,
+    },
+    "implicit-euler": {
+        "description": "implicit Euler on the front-fixed similarity grid (first order in the step)",
+        "family": "grid", "variant": 2, "order": 1, "adhesion": True, "jumps": True,
+        "nonlinear": True,
     },
     "auto": {
-        "description": "the cheapest method that meets rtol for the scene (analytic where it applies)",
-        "adhesion": True,
-        "order": None,
+        "description": "the cheapest method that meets rtol for the scene (see AUTO_POLICY)",
+        "family": None, "order": None, "adhesion": True, "jumps": True, "nonlinear": True,
     },
+}
+
+#: ``method="auto"``: per kind of scene, the candidates in order of measured cost per
+#: pressure at equal error (``benchmarks/RESULTS.md``, table "auto"); the first that can
+#: serve the scene is taken. Kinds: "linear" (no wall, or a wall a + b G from G = 0),
+#: "smooth" (any other wall without jumps), "jumps", "adhesion".
+AUTO_POLICY = {
+    "linear": ("analytic",),
+    "smooth": ("cn",),
+    "jumps": ("cn",),
+    "adhesion": ("cn",),
 }
 
 
@@ -29,3 +63,29 @@ def check_method(method: str) -> str:
         valid = ", ".join(repr(m) for m in METHODS)
         raise ValueError(f"method must be one of {valid}; got method = {method!r}")
     return method.lower()
+
+
+def check_serves(method: str, *, adhesion: bool = False, jumps: bool = False,
+                 nonlinear: bool = False) -> None:
+    """Raise a ValueError when ``method`` cannot serve a scene with these features."""
+    info = METHODS[method]
+    needs = (("adhesion", adhesion, "adhesion (work_of_adhesion > 0)"),
+             ("jumps", jumps, "a sigma_a that jumps (repeated G with different sigma_a)"),
+             ("nonlinear", nonlinear, "a sigma_a that is not linear in G (a + b G)"))
+    for key, needed, what in needs:
+        if needed and not info[key]:
+            able = [m for m, i in METHODS.items() if i[key] and m != "auto"]
+            others = ", ".join(repr(m) for m in able[1:])
+            raise ValueError(f"method {method!r} cannot serve {what}; use method={able[0]!r} "
+                             f"or 'auto' (also able: {others})")
+
+
+def choose_auto(kind: str) -> str:
+    """The method ``"auto"`` takes for a scene of this kind (see AUTO_POLICY)."""
+    need = {"adhesion": kind == "adhesion", "jumps": kind == "jumps",
+            "nonlinear": kind in ("smooth", "jumps", "adhesion")}
+    for name in AUTO_POLICY[kind]:
+        info = METHODS[name]
+        if all(info[key] or not needed for key, needed in need.items()):
+            return name
+    raise RuntimeError(f"AUTO_POLICY has no method for scenes of kind {kind!r}")

@@ -48,6 +48,8 @@ class DiffusionResult:
     status : (n_p,) int -- 0 ok, otherwise see ``message``.
     success : bool, message : str
     timings : dict -- seconds spent (``solve``; ``compile`` when this call compiled).
+    counts : (n_p, 3) int or None -- work of a compiled method per pressure: nodes (or time
+        nodes of "bnr"), steps, node-steps (kernel evaluations of "bnr").
     """
 
     G: np.ndarray
@@ -63,6 +65,7 @@ class DiffusionResult:
     success: bool
     message: str
     timings: dict = field(default_factory=dict)
+    counts: np.ndarray | None = None
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ import time
 import numpy as np
 
 from ._kernels.sweep import sweep_parallel, sweep_serial
+from .methods import METHODS
 
 #: below this many pressures the thread start-up costs more than it saves
 PARALLEL_MIN_PRESSURES = 4
@@ -48,8 +49,22 @@ def is_compiled(func) -> bool:
     return len(getattr(func, "signatures", ())) > 0
 
 
-def run_sweep(G, sa_rows, pressures, *, rtol, n_damp=2, parallel=None):
-    """Solve the diffusion for every pressure.
+def _kernels_for(method: str):
+    """(serial, parallel, leading arguments, takes n_damp) of a method's sweep kernels."""
+    info = METHODS[method]
+    if info["family"] == "grid":
+        return sweep_serial, sweep_parallel, (int(info["variant"]),), True
+    if info["family"] == "fixed-grid":
+        from ._kernels.fixedgrid import fixedgrid_sweep_parallel, fixedgrid_sweep_serial
+        return fixedgrid_sweep_serial, fixedgrid_sweep_parallel, (), True
+    if info["family"] == "integral":
+        from ._kernels.bnr import bnr_sweep_parallel, bnr_sweep_serial
+        return bnr_sweep_serial, bnr_sweep_parallel, (), False
+    raise ValueError(f"method {method!r} has no compiled sweep")
+
+
+def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, parallel=None):
+    """Solve the diffusion for every pressure with a compiled method.
 
     Parameters
     ----------
@@ -57,13 +72,16 @@ def run_sweep(G, sa_rows, pressures, *, rtol, n_damp=2, parallel=None):
     sa_rows : (n_p, n_t) float64 -- wall positions per pressure. [Pa]
     pressures : (n_p,) float64 -- nominal pressures. [Pa]
     rtol : float -- target relative accuracy. [-]
+    method : str -- a compiled entry of :data:`persson_fast.METHODS`.
+    level : int -- >= 0: explicit resolution level (doubles per level), ignoring rtol.
     n_damp : int -- Rannacher damping steps after wall jumps.
     parallel : bool or None -- None: see :func:`choose_parallel`.
 
     Returns
     -------
-    dict of arrays (area, load, detached_area, detached_load, error_estimate, status) and
-    timings (seconds: ``solve``, ``compile`` if this call compiled the kernel).
+    dict of arrays (area, load, detached_area, detached_load, error_estimate, status,
+    counts (n_p, 3): nodes, steps, node-steps) and timings (seconds: ``solve``, ``compile``
+    if this call compiled the kernel).
     """
     G = np.ascontiguousarray(G, dtype=np.float64)
     sa_rows = np.ascontiguousarray(sa_rows, dtype=np.float64)
@@ -76,28 +94,31 @@ def run_sweep(G, sa_rows, pressures, *, rtol, n_damp=2, parallel=None):
     out = {name: np.zeros((n_p, n_t)) for name in
            ("area", "load", "detached_area", "detached_load", "error_estimate")}
     status = np.zeros(n_p, dtype=np.int64)
-    parallel = choose_parallel(parallel, n_p, sweep_parallel)
-    kernel = sweep_parallel if parallel else sweep_serial
+    counts = np.zeros((n_p, 3), dtype=np.int64)
+    serial, par_kernel, lead, damped = _kernels_for(method)
+    parallel = choose_parallel(parallel, n_p, par_kernel)
+    kernel = par_kernel if parallel else serial
     timings = {}
     if not is_compiled(kernel):
         t0 = time.perf_counter()
-        _warm(kernel)
+        _warm(kernel, lead, damped)
         timings["compile"] = time.perf_counter() - t0
     order = interleave(n_p) if parallel else np.arange(n_p)
     sas_o = np.ascontiguousarray(sas[order])
     ps_o = np.ascontiguousarray(ps[order])
+    mid = (float(rtol), int(level)) + ((int(n_damp),) if damped else ())
     t0 = time.perf_counter()
-    kernel(Gs, sas_o, ps_o, float(rtol), int(n_damp), out["area"], out["load"],
-           out["detached_area"], out["detached_load"], out["error_estimate"], status)
+    kernel(*lead, Gs, sas_o, ps_o, *mid, out["area"], out["load"], out["detached_area"],
+           out["detached_load"], out["error_estimate"], status, counts)
     timings["solve"] = time.perf_counter() - t0
     inverse = np.empty_like(order)
     inverse[order] = np.arange(n_p)
     for key in out:
         out[key] = out[key][inverse]
-    status = status[inverse]
     out["load"] *= scale
     out["detached_load"] *= scale
-    out["status"] = status
+    out["status"] = status[inverse]
+    out["counts"] = counts[inverse]
     return out, timings
 
 
@@ -110,12 +131,14 @@ def _scene_scale(G, sa_rows, pressures) -> float:
     return float(scale) if scale > 0 and np.isfinite(scale) else 1.0
 
 
-def _warm(kernel) -> None:
+def _warm(kernel, lead=(0,), damped=True) -> None:
     G = np.array([0.0, 1.0])
     sa = np.zeros((1, 2))
     p = np.array([1.0])
     outs = [np.zeros((1, 2)) for _ in range(5)]
-    kernel(G, sa, p, 1e-3, 2, *outs, np.zeros(1, dtype=np.int64))
+    mid = (1e-3, -1) + ((2,) if damped else ())
+    kernel(*lead, G, sa, p, *mid, *outs, np.zeros(1, dtype=np.int64),
+           np.zeros((1, 3), dtype=np.int64))
 
 
 def warmup(parallel: bool = True) -> dict:

@@ -27,7 +27,7 @@ import numpy as np
 
 from .._jit import njit_parallel, njit_serial, prange
 from . import status as st
-from .diffusion import solve_one
+from .diffusion import solve_variant
 
 #: iterations without halving the best residual after which the fixed point gives up
 STALL_ITERATIONS = 10
@@ -84,13 +84,14 @@ def _residual_norm(f, x, sigma0):
 
 
 @njit_serial
-def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_hist, omega,
-                       x_init, out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
+def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_hist,
+                       omega, x_init, out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
                        out_det_load, out_error):
     """Self-consistent contact of one nominal pressure (scaled units).
 
     Parameters
     ----------
+    variant : int -- grid variant of the diffusion solves (see ``solve_variant``).
     G : (n_z,) -- diffusion times at the magnifications, G[0] = 0.
     c : (n_z,) -- beta sqrt(dgamma E* q)/scale at the magnifications.
     wa, wb : (n_z - 1,) -- quadrature weights of U_el / dgamma.
@@ -129,6 +130,7 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
     u = np.empty(n)
     g = np.empty(n)
     ones = np.ones(n)
+    counts = np.zeros(3, dtype=np.int64)
     # start: the given profile, or the detachment stress of full contact
     if x_init[0] >= 0.0:
         for i in range(n):
@@ -153,7 +155,8 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
             rtol_it = 1e-3
         if rtol_it < rtol or final_pass:
             rtol_it = rtol
-        kstat = solve_one(G, x, sigma0, rtol_it, n_damp, area, load, det_a, det_l, err)
+        kstat = solve_variant(variant, G, x, sigma0, rtol_it, -1, n_damp, area, load, det_a,
+                              det_l, err, counts)
         if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
             break
@@ -270,12 +273,12 @@ def solve_adhesive_one(G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_
 
 
 @njit_serial
-def adhesive_sweep_serial(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
+def adhesive_sweep_serial(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
                           omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error,
                           status, iterations, residual):
     """All pressures in turn; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,)."""
     for k in range(pressures.shape[0]):
-        s, it, res = solve_adhesive_one(G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
+        s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
                                         max_iter, m_hist, omega, x_init[k], area[k],
                                         sigma_a[k], g[k],
                                         u[k], load[k], det_area[k], det_load[k], error[k])
@@ -285,12 +288,12 @@ def adhesive_sweep_serial(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_it
 
 
 @njit_parallel
-def adhesive_sweep_parallel(G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
+def adhesive_sweep_parallel(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
                             omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error,
                             status, iterations, residual):
     """Same as :func:`adhesive_sweep_serial`, pressures over threads with ``prange``."""
     for k in prange(pressures.shape[0]):
-        s, it, res = solve_adhesive_one(G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
+        s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
                                         max_iter, m_hist, omega, x_init[k], area[k],
                                         sigma_a[k], g[k],
                                         u[k], load[k], det_area[k], det_load[k], error[k])

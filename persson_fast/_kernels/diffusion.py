@@ -314,8 +314,9 @@ def _fluxes(p, h, drift, diff):
 
 @njit_serial
 def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nodes, h,
-          n_steps_per_lng, n_steps_per_width, refine, n_damp, coarsen_at, p, tmp, lo, di, up,
-          a_lo, a_di, a_up, rhs, scratch, out_area, out_load, out_det_area, out_det_load):
+          n_steps_per_lng, n_steps_per_width, refine, n_damp, theta_main, coarsen_at, p, tmp,
+          lo, di, up, a_lo, a_di, a_up, rhs, scratch, out_area, out_load, out_det_area,
+          out_det_load, counts):
     """March one resolution from the exact start at ``g_start`` through the schedule.
 
     Scaled units (y0 = 1). Each schedule piece gets ``refine`` times the steps that
@@ -323,7 +324,9 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     travelled by the wall) ask for, so that two resolutions step in exact ratio. At each
     diffusion time in ``coarsen_at`` the grid drops every other node (the profile has widened);
     a moment projection keeps the discrete area and first moment. Fills outputs for schedule
-    indices >= ``i_first``. Returns (status, leak), leak the mass lost through the far end.
+    indices >= ``i_first``. ``theta_main``: 0.5 (Crank-Nicolson) or 1 (implicit Euler) for
+    the undamped steps. Adds the steps and node-steps taken to ``counts[1]``, ``counts[2]``.
+    Returns (status, leak), leak the mass lost through the far end.
     """
     n = n_nodes - 1
     p = p[: n + 1]
@@ -439,7 +442,9 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                         damp_left -= 1
                     else:
                         n_sub = 1
-                        theta = 0.5
+                        theta = theta_main
+                    counts[1] += n_sub
+                    counts[2] += n_sub * (n - 1)
                     rho = ratio ** (1.0 / n_sub)
                     for sub in range(n_sub):
                         if step == m - 1 and sub == n_sub - 1:
@@ -493,9 +498,64 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     return st.OK, leak
 
 
+#: grid variants of this kernel: (theta of the undamped steps, Richardson extrapolation,
+#: order of the result in the resolution, exponent of the space refinement per time refinement)
+CN = 0              # Crank-Nicolson, Richardson-extrapolated: order 4
+CN_PLAIN = 1        # Crank-Nicolson, the finer of the two runs: order 2
+IMPLICIT_EULER = 2  # implicit Euler, the finer run: order 1 in the step
+#: resolution of level 0 of the explicit ladder, relative to the rtol = 1e-6 grid of "cn"
+LEVEL0_SCALE = 0.25
+#: error constants of the unextrapolated variants at unit scale (measured on the images and
+#: moving-wall oracles, with a margin): plain CN's error is CN_PLAIN_C / scale^2, implicit
+#: Euler's IE_C / scale_t (its space error is that of plain CN)
+CN_PLAIN_C = 1e-3
+IE_C = 0.012
+
+
+@njit_serial
+def variant_resolution(variant, rtol, level):
+    """(space scale, time scale, theta, extrapolate) of a grid variant.
+
+    ``level >= 0`` is the explicit ladder (both scales double per level, from LEVEL0_SCALE);
+    else the scales follow from ``rtol`` and the variant's order: the node spacing is
+    H_BASE / space scale and the steps per ln G are NPER_BASE * time scale.
+    """
+    theta = 1.0 if variant == IMPLICIT_EULER else 0.5
+    extrapolate = variant == CN
+    if level >= 0:
+        s = LEVEL0_SCALE * 2.0 ** level
+        return s, s, theta, extrapolate
+    if variant == CN:
+        s = (1e-6 / rtol) ** 0.25
+        return s, s, theta, extrapolate
+    s = max(LEVEL0_SCALE, math.sqrt(CN_PLAIN_C / rtol))
+    if variant == CN_PLAIN:
+        return s, s, theta, extrapolate
+    return s, max(LEVEL0_SCALE, IE_C / rtol), theta, extrapolate
+
+
 @njit_serial
 def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out_det_load,
               out_error):
+    """The "cn" variant of :func:`solve_grid` at tolerance ``rtol`` (no work counts)."""
+    counts = np.zeros(3, dtype=np.int64)
+    sx, stp, theta, extrapolate = variant_resolution(CN, rtol, -1)
+    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, n_damp, out_area, out_load,
+                      out_det_area, out_det_load, out_error, counts)
+
+
+@njit_serial
+def solve_variant(variant, G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
+                  out_det_area, out_det_load, out_error, counts):
+    """One pressure with grid variant ``variant`` (CN, CN_PLAIN, IMPLICIT_EULER)."""
+    sx, stp, theta, extrapolate = variant_resolution(variant, rtol, level)
+    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, n_damp, out_area, out_load,
+                      out_det_area, out_det_load, out_error, counts)
+
+
+@njit_serial
+def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_area,
+               out_load, out_det_area, out_det_load, out_error, counts):
     """Contact area and load bookkeeping of one nominal pressure, in consistent units.
 
     Parameters
@@ -504,11 +564,16 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     sa : (n_t,) float64 -- detachment stress sigma_a at those times (wall at -sa), linear in
         between, constant sa[0] before G[0].
     sigma0 : float -- nominal stress (compressive > 0), same stress unit as sqrt(G).
-    rtol : float -- target relative accuracy of the area (sets the resolution).
+    scale_x, scale_t : float -- resolution in space and time: the coarse node spacing is
+        H_BASE / scale_x, the coarse steps per unit of ln G NPER_BASE * scale_t.
+    theta : float -- 0.5 (Crank-Nicolson) or 1 (implicit Euler) for the undamped steps.
+    extrapolate : bool -- report the Richardson extrapolation of the runs (N, M), (2N, 2M)
+        (order 2 -> 4 for Crank-Nicolson); else the finer run.
     n_damp : int -- Crank-Nicolson steps replaced by two implicit-Euler half steps after
         each wall jump (Rannacher damping).
     out_* : (n_t,) float64 -- area A/A0, load int sigma P, detached area, detached load
         int sigma_a g dG, and an error estimate of the area.
+    counts : (3,) int64 -- set to the coarse nodes, then steps and node-steps of both runs.
 
     Returns
     -------
@@ -609,14 +674,13 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
             return st.OK
     # grid: domain, spacing (tolerance, start width, Peclet), step density
     status = st.OK
-    scale = (1e-6 / rtol) ** 0.25
-    h_c = H_BASE / scale
+    h_c = H_BASE / scale_x
     if h_c > 0.25:
         h_c = 0.25
-    nper = NPER_BASE * scale
+    nper = NPER_BASE * scale_t
     if nper < 1.0:
         nper = 1.0
-    nper_width = NPER_WIDTH * scale
+    nper_width = NPER_WIDTH * scale_t
     w_s = math.sqrt(1.0 + 4.0 * g_start)
     std_start = math.sqrt(2.0 * g_start) / w_s
     xi_far = (1.0 + boundary_at(G_k, sa_k, g_start) - sa0s) / w_s
@@ -705,19 +769,25 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     fl = np.empty(nt + 1)
     fd = np.empty(nt + 1)
     fdl = np.empty(nt + 1)
+    counts[0] = n_c + 1
     s1, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_c + 1,
-                      h_c, nper, nper_width, 1, n_damp, coarsen_at, p[: n_c + 1], tmp[: n_c + 1], lo, di, up, a_lo, a_di,
-                      a_up, rhs, scratch, ca, cl, cd, cdl)
+                  h_c, nper, nper_width, 1, n_damp, theta, coarsen_at, p[: n_c + 1],
+                  tmp[: n_c + 1], lo, di, up, a_lo, a_di, a_up, rhs, scratch, ca, cl, cd, cdl,
+                  counts)
     s2, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_f + 1,
-                      0.5 * h_c, nper, nper_width, 2, n_damp, coarsen_at, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs,
-                      scratch, fa, fl, fd, fdl)
+                  0.5 * h_c, nper, nper_width, 2, n_damp, theta, coarsen_at, p, tmp, lo, di,
+                  up, a_lo, a_di, a_up, rhs, scratch, fa, fl, fd, fdl, counts)
     if s1 != st.OK:
         status = s1
     if s2 != st.OK:
         status = s2
+    # Richardson weights of an order-2 pair, or the finer run (error: the difference)
+    wf = 4.0 / 3.0 if extrapolate else 1.0
+    wc = wf - 1.0
+    err_div = 3.0 if extrapolate else 1.0
     for k in range(i_first, nt + 1):
-        a = (4.0 * fa[k] - ca[k]) / 3.0
-        d = (4.0 * fd[k] - cd[k]) / 3.0
+        a = wf * fa[k] - wc * ca[k]
+        d = wf * fd[k] - wc * cd[k]
         # the extrapolation may overshoot [0, 1] by rounding-size amounts: clip, keeping
         # A + detached = 1
         if a > 1.0:
@@ -727,10 +797,10 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
             d += a
             a = 0.0
         out_area[k - 1] = a
-        out_load[k - 1] = (4.0 * fl[k] - cl[k]) / 3.0 * y0
+        out_load[k - 1] = (wf * fl[k] - wc * cl[k]) * y0
         out_det_area[k - 1] = d
-        out_det_load[k - 1] = (4.0 * fdl[k] - cdl[k]) / 3.0 * y0
-        out_error[k - 1] = abs(fa[k] - ca[k]) / 3.0
+        out_det_load[k - 1] = (wf * fdl[k] - wc * cdl[k]) * y0
+        out_error[k - 1] = abs(fa[k] - ca[k]) / err_div
         if not math.isfinite(a):
             status = st.NONFINITE
     return status

@@ -1,27 +1,31 @@
 """Sweeps over pressures: one compiled one-pressure solve, two drivers (serial, ``prange``).
 
 Each iteration writes only its own output row, so the serial and the parallel sweep give
-bitwise-equal results.
+bitwise-equal results. ``variant`` selects the grid variant of
+:func:`persson_fast._kernels.diffusion.solve_variant`; ``level`` >= 0 an explicit resolution
+(else ``rtol`` sets it); ``counts`` (n_p, 3) receives nodes, steps and node-steps.
 """
 from __future__ import annotations
 
 from .._jit import njit_parallel, njit_serial, prange
-from .diffusion import solve_one
+from .diffusion import solve_variant
 
 
 @njit_serial
-def sweep_serial(G, sa_rows, pressures, rtol, n_damp, area, load, det_area, det_load, error,
-                 status):
+def sweep_serial(variant, G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area,
+                 det_load, error, status, counts):
     """Solve every pressure in turn. ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); status (n_p,)."""
     for k in range(pressures.shape[0]):
-        status[k] = solve_one(G, sa_rows[k], pressures[k], rtol, n_damp, area[k], load[k],
-                              det_area[k], det_load[k], error[k])
+        status[k] = solve_variant(variant, G, sa_rows[k], pressures[k], rtol, level, n_damp,
+                                  area[k], load[k], det_area[k], det_load[k], error[k],
+                                  counts[k])
 
 
 @njit_parallel
-def sweep_parallel(G, sa_rows, pressures, rtol, n_damp, area, load, det_area, det_load, error,
-                   status):
+def sweep_parallel(variant, G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area,
+                   det_load, error, status, counts):
     """Same as :func:`sweep_serial`, pressures spread over threads with ``prange``."""
     for k in prange(pressures.shape[0]):
-        status[k] = solve_one(G, sa_rows[k], pressures[k], rtol, n_damp, area[k], load[k],
-                              det_area[k], det_load[k], error[k])
+        status[k] = solve_variant(variant, G, sa_rows[k], pressures[k], rtol, level, n_damp,
+                                  area[k], load[k], det_area[k], det_load[k], error[k],
+                                  counts[k])
