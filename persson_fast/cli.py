@@ -24,6 +24,7 @@ import sys
 import time
 
 import numpy as np
+from .methods import METHODS
 
 __all__ = ["main", "build_parser"]
 
@@ -130,7 +131,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="nominal pressures [Pa]")
     pr.add_argument("--pressure-range", type=float, nargs=3, metavar=("PMIN", "PMAX", "N"),
                     help="N pressures from PMIN to PMAX [Pa], evenly spaced")
-    ct.add_argument("--method", choices=tuple(pf.METHODS),
+    ct.add_argument("--method", choices=tuple(METHODS),
                     help="solution method (default: auto)")
     ct.add_argument("--rtol", type=float, metavar="R",
                     help="target relative accuracy (default 1e-6)")
