@@ -24,6 +24,7 @@ import sys
 import time
 
 import numpy as np
+
 from .methods import METHODS
 
 __all__ = ["main", "build_parser"]
