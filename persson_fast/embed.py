@@ -1,0 +1,140 @@
+"""Compiled one-pressure solves to call from your own ``@numba.njit`` code.
+
+Everything here takes plain float64 arrays and scalars and runs in nopython mode, so a
+simulation kernel can ask for the contact area at each of its nodes without returning to
+Python. The Python side builds the scene arrays once (validated); the compiled side only
+calls.
+
+No adhesion, a prescribed wall (any consistent stress unit, e.g. Pa and Pa^2)::
+
+    import numba, numpy as np, persson_fast as pf
+    from persson_fast import embed
+
+    G = pf.seed_scene().diffusion_time(q, e_star)       # (n,), G[0] >= 0
+    sigma_a = np.zeros_like(G)
+
+    @numba.njit
+    def areas(G, sigma_a, local_pressure, rtol):
+        out = np.empty(local_pressure.size)
+        for i in range(local_pressure.size):
+            out[i], status = embed.diffusion_area(G, sigma_a, local_pressure[i], rtol)
+        return out
+
+With adhesion::
+
+    scene = embed.adhesive_scene(surface, e_star=e_star, work_of_adhesion=0.06, rtol=1e-4)
+
+    @numba.njit
+    def areas(scene, local_pressure, rtol):
+        out = np.empty(local_pressure.size)
+        for i in range(local_pressure.size):
+            out[i], status = embed.adhesive_area(scene, local_pressure[i], rtol)
+        return out
+
+A non-zero status is one of :mod:`persson_fast._kernels.status` (``STATUS_MESSAGES`` says
+what it means); check it as you would a result's ``status``. ``adhesive_area`` is the same
+two-grid, Richardson-extrapolated fixed point as :func:`persson_fast.solve_contact`.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ._jit import njit_serial
+from ._kernels import status as _status
+from ._kernels.adhesion import solve_adhesive_one
+from ._kernels.diffusion import solve_one
+from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
+
+__all__ = ["diffusion_area", "diffusion_solve", "adhesive_scene", "adhesive_area",
+           "STATUS_MESSAGES"]
+
+STATUS_MESSAGES = _status.STATUS_MESSAGES
+
+#: the one-pressure diffusion solve: ``diffusion_solve(G, sigma_a, sigma0, rtol, n_damp,
+#: out_area, out_load, out_detached_area, out_detached_load, out_error) -> status``, every
+#: output an (n,) array written in place (see :func:`persson_fast._kernels.diffusion.solve_grid`)
+diffusion_solve = solve_one
+
+
+@njit_serial
+def diffusion_area(G, sigma_a, sigma0, rtol):
+    """(A(G[-1]) / A0, status) of one pressure with the wall at -sigma_a(G).
+
+    G: (n,) non-decreasing, G[0] >= 0; sigma_a: (n,); sigma0, rtol: floats (consistent
+    units: stress and sqrt(G) alike).
+    """
+    n = G.shape[0]
+    a = np.empty(n)
+    ld = np.empty(n)
+    da = np.empty(n)
+    dl = np.empty(n)
+    er = np.empty(n)
+    s = solve_one(G, sigma_a, sigma0, rtol, 2, a, ld, da, dl, er)
+    return a[n - 1], s
+
+
+def adhesive_scene(surface, *, e_star, work_of_adhesion, energy_correction=None,
+                   detachment_prefactor=2 ** -0.5, rtol=1e-6):
+    """The plain-array scene of :func:`adhesive_area` (validated, built once in Python).
+
+    Returns a tuple (G, c, wa, wb, G_fine, c_fine, wa_fine, wb_fine, gamma_s, scale): the
+    scaled kernel inputs on the nested magnification grids of ``adhesion_zeta(surface,
+    rtol)``, gamma_s (< 0 for S = 1) and the stress scale [Pa].
+    """
+    from .api import _check_rtol, _check_scene_args
+
+    rtol = _check_rtol(rtol)
+    e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
+                                    energy_correction)
+    if dg <= 0:
+        raise ValueError(f"work_of_adhesion must be > 0 [J/m^2] for an adhesive scene; got "
+                         f"work_of_adhesion = {work_of_adhesion!r} (use diffusion_area without "
+                         "adhesion)")
+    zeta = adhesion_zeta(surface, rtol)
+    Gc, cc, wac, wbc, scale, _ = _scene_arrays(surface, zeta, e, dg, beta)
+    # the nested grids share their end points, hence the stress scale
+    Gf, cf, waf, wbf, _, _ = _scene_arrays(surface, refine_zeta(zeta), e, dg, beta)
+    gamma_s = -1.0 if energy_correction is None else float(energy_correction)
+    return (Gc, cc, wac, wbc, Gf, cf, waf, wbf, gamma_s, float(scale))
+
+
+#: fixed-point controls of the compiled path (the package defaults)
+ADHESION_N_DAMP = int(ADHESION_DEFAULTS["n_damp"])
+ADHESION_MAX_ITER = int(ADHESION_DEFAULTS["max_iter"])
+ADHESION_M_HIST = int(ADHESION_DEFAULTS["m_hist"])
+ADHESION_OMEGA = float(ADHESION_DEFAULTS["omega"])
+
+
+@njit_serial
+def _fixed_point_area(G, c, wa, wb, gamma_s, sigma0, rtol):
+    n = G.shape[0]
+    x0 = np.full(n, -1.0)
+    outs = np.empty((8, n))
+    s, it, res = solve_adhesive_one(0, G, c, wa, wb, gamma_s, sigma0, rtol,
+                                    ADHESION_N_DAMP, ADHESION_MAX_ITER, ADHESION_M_HIST,
+                                    ADHESION_OMEGA, x0, outs[0], outs[1], outs[2], outs[3],
+                                    outs[4], outs[5], outs[6], outs[7])
+    return outs[0, n - 1], s
+
+
+@njit_serial
+def adhesive_area(scene, pressure, rtol):
+    """(A(zeta1) / A0, status) of one nominal pressure [Pa] (tension < 0 allowed).
+
+    ``scene`` from :func:`adhesive_scene`; the fixed point of seed Eqs. 8-9 on both nested
+    grids, Richardson-extrapolated (as :func:`persson_fast.solve_contact`, without its
+    warm start of the fine grid).
+    """
+    Gc, cc, wac, wbc, Gf, cf, waf, wbf, gamma_s, scale = scene
+    p = pressure / scale
+    ac, sc = _fixed_point_area(Gc, cc, wac, wbc, gamma_s, p, rtol)
+    af, sf = _fixed_point_area(Gf, cf, waf, wbf, gamma_s, p, rtol)
+    s = sf if sf != 0 else sc
+    if (ac > 0.0) != (af > 0.0):
+        return af, s
+    a = (4.0 * af - ac) / 3.0
+    if a < 0.0:
+        a = 0.0
+    elif a > 1.0:
+        a = 1.0
+    return a, s
