@@ -21,7 +21,7 @@ from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
 from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite
 from .methods import METHODS, check_serves, choose_auto
-from .results import ContactResult, mean_contact_pressure, summarize_status
+from .results import ContactResult, per_contact_area, summarize_status
 from .sweep import choose_parallel, interleave, is_compiled
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
@@ -211,7 +211,8 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     return ContactResult(
         pressure=p, area=area, zeta=zeta, G=G_dim, area_zeta=area_z, sigma_a=sa,
         gamma_eff=g * work_of_adhesion, load=load[:, -1].copy(),
-        mean_contact_pressure=mean_contact_pressure(load[:, -1], area),
+        mean_contact_pressure=per_contact_area(p, area),
+        mean_contact_stress=per_contact_area(load[:, -1], area),
         detached_area=det_a[:, -1].copy(), detached_load=det_l[:, -1].copy(),
         error_estimate=err[:, -1].copy(), method=method, status=status, success=success,
         message=message, timings=timings, elastic_energy=u * work_of_adhesion,

@@ -15,7 +15,7 @@ from ._validation import (
 )
 from .adhesion import solve_adhesive_contact
 from .methods import check_method, check_serves, choose_auto
-from .results import ContactResult, DiffusionResult, mean_contact_pressure, summarize_status
+from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
 from .sweep import run_sweep
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
@@ -333,7 +333,8 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     zeros = np.zeros((p.size, z.size))
     return ContactResult(
         pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=zeros, gamma_eff=zeros.copy(),
-        load=load, mean_contact_pressure=mean_contact_pressure(load, area), detached_area=det_a, detached_load=det_l,
+        load=load, mean_contact_pressure=per_contact_area(p, area),
+        mean_contact_stress=per_contact_area(load, area), detached_area=det_a, detached_load=det_l,
         error_estimate=err, method=use, status=status, success=success, message=message,
         timings=timings,
     )

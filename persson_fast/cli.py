@@ -214,7 +214,8 @@ def _cmd_figure2(args) -> int:
     csv_path = os.path.join(args.out, "figure2.csv")
     columns = {"pressure_Pa": pressure, "area_no_adhesion": res.area,
                "area_adhesion": area_adh,
-               "mean_contact_pressure_adhesion_Pa": res_adh.mean_contact_pressure}
+               "mean_contact_pressure_adhesion_Pa": res_adh.mean_contact_pressure,
+               "mean_contact_stress_adhesion_Pa": res_adh.mean_contact_stress}
     _write_csv(csv_path, columns)
     print(f"wrote {csv_path}")
     if args.no_plot:
@@ -449,6 +450,7 @@ def _cmd_contact(args) -> int:
             os.makedirs(folder, exist_ok=True)
         _write_csv(s["csv"], {"pressure_Pa": res.pressure, "area": res.area,
                               "mean_contact_pressure_Pa": res.mean_contact_pressure,
+                              "mean_contact_stress_Pa": res.mean_contact_stress,
                               "status": res.status})
         print(f"wrote {s['csv']}")
     return 0

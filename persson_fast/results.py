@@ -22,12 +22,12 @@ def summarize_status(status: np.ndarray) -> tuple[bool, str]:
     return False, "; ".join(parts)
 
 
-def mean_contact_pressure(load, area):
-    """Mean stress in the contact, load / area; nan where there is no contact. [Pa]"""
-    load = np.asarray(load, dtype=float)
+def per_contact_area(x, area):
+    """x / area where there is contact, nan where A = 0 (mean stresses in the contact)."""
+    x = np.asarray(x, dtype=float)
     area = np.asarray(area, dtype=float)
     safe = np.where(area > 0, area, 1.0)
-    return np.where(area > 0, load / safe, np.nan)
+    return np.where(area > 0, x / safe, np.nan)
 
 
 @dataclass(frozen=True)
@@ -82,7 +82,8 @@ class ContactResult:
     sigma_a : (n_p, n_z) -- detachment stress sigma_a(zeta) (zeros without adhesion). [Pa]
     gamma_eff : (n_p, n_z) -- effective interfacial energy (zeros without adhesion). [J/m^2]
     load : (n_p,) -- load carried in contact at zeta1. [Pa]
-    mean_contact_pressure : (n_p,) -- load / area, mean stress in the contact (nan where A = 0). [Pa]
+    mean_contact_pressure : (n_p,) -- p_nom A0 / A, the mean stress in the contact by force
+        balance (THEORY section 6; nan where A = 0). [Pa]
     detached_area, detached_load : (n_p,) -- bookkeeping at zeta1. [-], [Pa]
     error_estimate : (n_p,) -- estimate of the absolute error of ``area``. [-]
     method : str, status : (n_p,) int, success : bool, message : str, timings : dict
@@ -93,6 +94,10 @@ class ContactResult:
     load_zeta, detached_load_zeta : (n_p, n_z) -- load in contact and detached load. [Pa]
     zeta_error : (n_p,) -- adhesion: estimated error of ``area`` from the zeta grid (the
         difference of the two nested grids / 3); included in ``error_estimate``. [-]
+    mean_contact_stress : (n_p,) -- load / A, the mean of the compressive stress
+        distribution over the contact, int sigma P dsigma / A (equal to
+        ``mean_contact_pressure`` without adhesion; larger with it, since the contact also
+        carries the tension of the detached rims; nan where A = 0). [Pa]
     """
 
     pressure: np.ndarray
@@ -119,3 +124,4 @@ class ContactResult:
     load_zeta: np.ndarray | None = None
     detached_load_zeta: np.ndarray | None = None
     zeta_error: np.ndarray | None = None
+    mean_contact_stress: np.ndarray | None = None

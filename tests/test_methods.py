@@ -1,0 +1,139 @@
+"""Every registered method: convergence at its theoretical order against exact solutions,
+its tolerance met (or flagged), clear errors for scenes it cannot serve, auto's choice."""
+import math
+
+import numpy as np
+import pytest
+
+import persson_fast as pf
+from persson_fast._reference import cn_baseline
+from persson_fast.methods import AUTO_POLICY, METHODS, check_serves, choose_auto
+
+from tolerances import ATOL
+
+#: five decades of G, few schedule points (each piece needs at least one step, so a dense
+#: schedule would hide the coarse levels' step count)
+G = np.r_[0.0, np.geomspace(1e-2, 1e3, 6)]
+PRESSURES = np.array([0.3, 1.0, 3.0])
+WALLS = {"images": (0.0, 0.0), "receding": (0.5, 0.05), "approaching": (2.0, -0.002)}
+#: levels whose error ratios measure the order (the asymptotic range of each method)
+LADDER = {"cn": (1, 2, 3, 4), "cn-plain": (2, 3, 4, 5), "implicit-euler": (3, 4, 5, 6)}
+#: |measured - theoretical| allowed: the pre-asymptotic drift over the ladder above
+ORDER_SLACK = 0.35
+
+COMPILED = [m for m, i in METHODS.items() if i["family"] not in (None, "closed-form")]
+
+
+def _exact(wall):
+    a, b = WALLS[wall]
+    if a == 0.0 and b == 0.0:
+        return pf.images_area(PRESSURES[:, None], G[None, :])
+    return pf.linear_boundary_area(PRESSURES[:, None], G[None, :], a, b)
+
+
+def _sigma_a(wall):
+    a, b = WALLS[wall]
+    return a + b * G
+
+
+def _errors(method, wall, levels):
+    ref = _exact(wall)
+    out = []
+    for level in levels:
+        r = pf.solve_diffusion(G, PRESSURES, _sigma_a(wall), method=method, level=level)
+        assert r.success, r.message
+        out.append(np.max(np.abs(r.area - ref) / ref))
+    return np.array(out)
+
+
+@pytest.mark.parametrize("wall", sorted(WALLS))
+@pytest.mark.parametrize("method", sorted(LADDER))
+def test_grid_variants_converge_at_their_order(method, wall):
+    levels = LADDER[method]
+    err = _errors(method, wall, levels)
+    orders = np.log2(err[:-1] / err[1:])
+    theory = METHODS[method]["order"]
+    assert abs(np.median(orders) - theory) <= ORDER_SLACK, (orders, err)
+
+
+@pytest.mark.parametrize("wall", sorted(WALLS))
+@pytest.mark.parametrize("method", COMPILED)
+@pytest.mark.parametrize("rtol", [1e-3, 1e-4])
+def test_every_compiled_method_meets_rtol_or_flags(method, wall, rtol):
+    r = pf.solve_diffusion(G, PRESSURES, _sigma_a(wall), method=method, rtol=rtol)
+    assert r.method == method
+    ref = _exact(wall)
+    ok = np.abs(r.area - ref) <= rtol * ref + ATOL
+    # a method that cannot reach rtol within its work cap says so in the status
+    assert np.all(ok | (r.status[:, None] != 0)), (np.max(np.abs(r.area - ref) / ref), r.message)
+
+
+def test_cn_reaches_1e_8_relative_error():
+    for wall in WALLS:
+        err = _errors("cn", wall, (5,))
+        assert err[0] <= 1e-8, (wall, err)
+
+
+def test_levels_double_the_work():
+    r = [pf.solve_diffusion(G, 1.0, 0.0, method="cn", level=k).counts[0] for k in (2, 3, 4)]
+    nodes = [c[0] for c in r]
+    steps = [c[1] for c in r]
+    assert all(1.8 <= b / a <= 2.2 for a, b in zip(nodes[:-1], nodes[1:]))
+    assert all(1.8 <= b / a <= 2.2 for a, b in zip(steps[:-1], steps[1:]))
+
+
+def test_baseline_converges_at_second_order():
+    g = np.r_[0.0, np.geomspace(1e-2, 10.0, 6)]
+    ref = pf.images_area(3.0, g)
+    errs = [np.max(np.abs(cn_baseline(g, 0 * g, 3.0, n, n / 8) - ref) / ref)
+            for n in (100, 200, 400)]
+    orders = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
+    assert np.all(np.abs(orders - 2.0) <= 0.3), (errs, orders)
+
+
+def test_analytic_cannot_serve_adhesion():
+    s = pf.seed_scene()
+    with pytest.raises(ValueError, match=r"method 'analytic' cannot serve adhesion .*method='cn'"):
+        pf.solve_contact(s, 0.0, e_star=3e9, work_of_adhesion=0.06, method="analytic")
+
+
+def test_check_serves_names_the_scene_feature():
+    for method, info in METHODS.items():
+        for key in ("adhesion", "jumps", "nonlinear"):
+            if info[key]:
+                check_serves(method, **{key: True})
+            else:
+                with pytest.raises(ValueError, match=f"method '{method}' cannot serve"):
+                    check_serves(method, **{key: True})
+
+
+def test_auto_policy_serves_every_kind_and_is_recorded():
+    for kind in AUTO_POLICY:
+        name = choose_auto(kind)
+        assert name in METHODS and name != "auto"
+    r = pf.solve_diffusion(G, 1.0, 0.5 + 0.05 * G, method="auto")
+    assert r.method == "analytic"
+    r = pf.solve_diffusion(G, 1.0, 0.5 + 0.05 * np.sqrt(G), method="auto")
+    assert r.method == choose_auto("smooth")
+    s = pf.seed_scene()
+    r = pf.solve_contact(s, 1e7, e_star=3e9, work_of_adhesion=0.06, method="auto", rtol=1e-3)
+    assert r.method == choose_auto("adhesion")
+
+
+def test_unknown_method_lists_every_name():
+    with pytest.raises(ValueError) as info:
+        pf.solve_diffusion(G, 1.0, method="euler")
+    for name in METHODS:
+        assert repr(name) in str(info.value)
+
+
+def test_mean_contact_pressure_and_stress():
+    s = pf.seed_scene()
+    p = np.array([-1e5, 0.0, 1e7])
+    r = pf.solve_contact(s, p, e_star=3e9, work_of_adhesion=0.06, rtol=1e-3)
+    has = r.area > 0
+    assert np.allclose(r.mean_contact_pressure[has], p[has] / r.area[has], rtol=1e-14)
+    assert np.allclose(r.mean_contact_stress[has], r.load[has] / r.area[has], rtol=1e-14)
+    r0 = pf.solve_contact(s, p[1:] + 1e6, e_star=3e9)
+    assert np.array_equal(r0.mean_contact_pressure, r0.mean_contact_stress)
+    assert math.isnan(pf.solve_contact(s, 0.0, e_star=3e9).mean_contact_pressure[0])
