@@ -19,12 +19,27 @@ from .adhesion import adhesion_zeta, pull_off
 from .api import default_zeta, solve_contact, solve_diffusion
 from .methods import METHODS
 from .results import ContactResult, DiffusionResult
-from .surfaces import CapillaryWaves, SelfAffine, Surface, TabulatedPSD, seed_scene
+from .surfaces import (
+    BOLTZMANN,
+    SEED_POISSON,
+    SEED_WORK_OF_ADHESION,
+    SEED_YOUNG_MODULUS,
+    CapillaryWaves,
+    SelfAffine,
+    Surface,
+    TabulatedPSD,
+    seed_e_star,
+    seed_scene,
+)
 from .sweep import warmup
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "BOLTZMANN",
+    "SEED_POISSON",
+    "SEED_WORK_OF_ADHESION",
+    "SEED_YOUNG_MODULUS",
     "CapillaryWaves",
     "ContactResult",
     "DiffusionResult",
@@ -44,6 +59,7 @@ __all__ = [
     "linear_boundary_load",
     "plastic_area",
     "pull_off",
+    "seed_e_star",
     "seed_scene",
     "solve_contact",
     "solve_diffusion",

@@ -26,15 +26,11 @@ import time
 import numpy as np
 
 from .methods import METHODS
+from .surfaces import SEED_POISSON as SEED_POISSON_DEFAULT
+from .surfaces import SEED_WORK_OF_ADHESION, SEED_YOUNG_MODULUS
 
 __all__ = ["main", "build_parser"]
 
-#: Young's modulus of PMMA used by the seed paper. [Pa]
-SEED_YOUNG_MODULUS = 2.9e9
-#: Poisson ratio assumed for PMMA (the seed paper gives none). [-]
-SEED_POISSON_DEFAULT = 0.3
-#: work of adhesion of the seed's adhesive curve. [J/m^2]
-SEED_WORK_OF_ADHESION = 0.06
 #: largest nominal pressure of the seed's Fig. 2. [Pa]
 SEED_P_MAX = 100e6
 

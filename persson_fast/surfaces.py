@@ -846,6 +846,26 @@ class TabulatedPSD(Surface):
         return np.concatenate(([self.q0], inner, [self.q1]))
 
 
+#: Young's modulus of the seed's PMMA. [Pa]
+SEED_YOUNG_MODULUS = 2.9e9
+#: Poisson ratio assumed for PMMA (the seed paper gives none). [-]
+SEED_POISSON = 0.3
+#: work of adhesion of the seed's adhesive curve (Fig. 2). [J/m^2]
+SEED_WORK_OF_ADHESION = 0.06
+
+
+def seed_e_star(poisson: float = SEED_POISSON) -> float:
+    """Effective modulus E* = E / (1 - nu^2) of the seed's PMMA (E = 2.9 GPa). [Pa]
+
+    The seed paper gives no Poisson ratio; ``poisson`` (default 0.3, assumed) must lie in
+    [0, 0.5].
+    """
+    nu = float(poisson)
+    if not (math.isfinite(nu) and 0.0 <= nu <= 0.5):
+        raise ValueError(f"poisson must lie in [0, 0.5] [-]; got poisson = {poisson!r}")
+    return SEED_YOUNG_MODULUS / (1.0 - nu * nu)
+
+
 def seed_scene() -> CapillaryWaves:
     """The seed paper's PMMA surface: frozen capillary waves at T_g.
 
