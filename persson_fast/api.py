@@ -136,8 +136,12 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
         raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
     if level is not None and (not isinstance(level, (int, np.integer)) or not 0 <= level <= 12):
         raise ValueError(f"level must be an integer in [0, 12] [-] or None; got level = {level!r}")
-    linear = _is_linear(G, rows)
-    jumps = bool(np.any((np.diff(G) == 0)[None, :] & (np.diff(rows, axis=1) != 0)))
+    if sa.ndim == 0:
+        linear, jumps = True, False          # a wall at rest
+    else:
+        distinct = rows if sa.ndim == 2 else rows[:1]
+        linear = _is_linear(G, distinct)
+        jumps = bool(np.any((np.diff(G) == 0)[None, :] & (np.diff(distinct, axis=1) != 0)))
     kind = "linear" if linear else ("jumps" if jumps else "smooth")
     use = choose_auto(kind) if method == "auto" else method
     check_serves(use, jumps=jumps, nonlinear=not linear)

@@ -45,7 +45,14 @@ def interleave(n: int) -> np.ndarray:
 
 
 def is_compiled(func) -> bool:
-    """True once a numba dispatcher holds a compiled signature."""
+    """True once a numba dispatcher holds a compiled signature.
+
+    Reads the dispatcher's ``overloads`` mapping (cheap) rather than ``signatures`` (which
+    rebuilds a list on every call and costs tens of microseconds).
+    """
+    overloads = getattr(func, "overloads", None)
+    if overloads is not None:
+        return len(overloads) > 0
     return len(getattr(func, "signatures", ())) > 0
 
 
