@@ -31,6 +31,7 @@ from .surfaces import (
     seed_e_star,
     seed_scene,
 )
+from .scan import scan
 from .sweep import warmup
 
 __version__ = "0.1.0"
@@ -59,6 +60,7 @@ __all__ = [
     "linear_boundary_load",
     "plastic_area",
     "pull_off",
+    "scan",
     "seed_e_star",
     "seed_scene",
     "solve_contact",

@@ -1,0 +1,866 @@
+"""Parameter scans: many scenes, each swept over the same nominal pressures.
+
+:func:`scan` crosses a grid of scene parameters -- any keyword argument of a surface model
+(``hurst``, ``h_rms``, ``slope_rms``, ``q0``, ``q1``, ``temperature``, ...) and the solve
+parameters ``e_star``, ``work_of_adhesion``, ``energy_correction`` and
+``detachment_prefactor`` -- with a vector of nominal pressures. Every scene is one call of
+:func:`persson_fast.solve_contact` over all pressures (and, on request, one call of
+:func:`persson_fast.pull_off`), so a scan returns exactly the numbers those calls return.
+
+Why xarray
+----------
+A scan is a labelled N-dimensional grid: one axis per scanned parameter plus ``pressure``
+(and ``zeta`` for profiles), with per-scene variables (``success``, ``message``,
+``pull_off``) living on a sub-grid of the same axes. :class:`xarray.Dataset` holds exactly
+that: ``ds.area.sel(hurst=0.8, work_of_adhesion=0.06)`` selects by value,
+``ds.area.plot(x="pressure", hue="hurst")`` plots with labelled axes, the units travel in
+``attrs``, ``ds.to_netcdf`` stores the scan, and a tidy table (one row per scene and
+pressure) is one ``ds.to_dataframe()`` away. A flat DataFrame as the primary result would
+lose the grid structure (and repeat every per-scene value on every pressure row).
+
+Execution
+---------
+*Local* (``client=None``). The compiled kernels release the GIL, so scenes run on a pool of
+threads, each scene with the serial (disk-cached) kernels; scenes whose answer is a closed
+form (no adhesion, ``method`` "auto" or "analytic") cost microseconds of Python and run in
+the calling thread. ``python -m benchmarks.scan_scale`` compares this with running the
+scenes one after another, each pressure sweep spread over threads (``prange``). On a
+2-core machine shared with other jobs (load average 3-4), threads over scenes were as fast
+or faster in every case and run (minimum of 5 interleaved runs: 1.39 s against 1.59 s for
+20 scenes x 100 pressures with "cn", 1.24 s against 1.36 s for 10 adhesive scenes x 20
+pressures, 0.56 s against 0.69 s for 3 adhesive scenes x 60 pressures), and they never pay
+the 12-28 s per process that compiling the parallel kernels costs (those are not cached on
+disk). A single scene, or ``workers=1``, runs in the calling thread with
+:func:`~persson_fast.solve_contact`'s own choice of pressure parallelism; with only a few
+expensive scenes and the parallel kernels already compiled (``pf.warmup()``), that can
+balance better.
+
+*Distributed* (``client`` a :class:`dask.distributed.Client`, a scheduler address, or
+``"local"``). Contiguous chunks of the scene grid become tasks of the module-level function
+:func:`solve_chunk`; the results are gathered and placed by scene index, so the dataset
+equals the local one bitwise. Workers load the serial kernels from numba's on-disk cache
+(``client.run(persson_fast.warmup, False)`` once per scan). A ``KeyboardInterrupt`` (or any
+error) while waiting cancels every pending task of the scan; a cluster that :func:`scan`
+created itself (``client="local"``) is closed in every case, and a client passed in stays
+open.
+"""
+from __future__ import annotations
+
+import inspect
+import itertools
+import math
+import sys
+import time
+import uuid
+from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
+
+import numpy as np
+
+from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
+from .adhesion import adhesion_zeta
+from .adhesion import pull_off as _pull_off
+from .api import default_zeta, solve_contact
+from .methods import METHODS
+from .surfaces import Surface
+
+__all__ = ["scan", "solve_chunk", "SOLVE_PARAMETERS", "PARAMETER_UNITS"]
+
+#: parameters that go to :func:`solve_contact` / :func:`pull_off` rather than to the surface
+SOLVE_PARAMETERS = ("e_star", "work_of_adhesion", "energy_correction", "detachment_prefactor")
+
+_SOLVE_DEFAULTS = {
+    "e_star": None,
+    "work_of_adhesion": 0.0,
+    "energy_correction": None,
+    "detachment_prefactor": 2 ** -0.5,
+}
+
+#: units of the parameters of the package's surface models and of the solve, for ``attrs``
+PARAMETER_UNITS = {
+    "e_star": "Pa",
+    "work_of_adhesion": "J/m^2",
+    "energy_correction": "-",
+    "detachment_prefactor": "-",
+    "hurst": "-",
+    "q0": "1/m",
+    "q1": "1/m",
+    "q_r": "1/m",
+    "h_rms": "m",
+    "slope_rms": "-",
+    "C0": "m^4",
+    "temperature": "K",
+    "surface_tension": "J/m^2",
+    "q_c": "1/m",
+    "density": "kg/m^3",
+    "gravity": "m/s^2",
+}
+
+#: keys that cannot be scan parameters (they name the result's own axes)
+_RESERVED = ("pressure", "zeta")
+
+#: ``progress=None`` shows a bar when a scan has more scenes than this ...
+PROGRESS_MIN_SCENES = 50
+#: ... or is estimated to take longer than this [s] (and stderr is a terminal)
+PROGRESS_MIN_SECONDS = 2.0
+
+# rough costs per pressure on one core, only used to decide whether to show a progress bar:
+# closed form, the "cn" kernel without adhesion, the adhesive fixed point at rtol = 1e-4
+_COST_CLOSED_FORM = 2e-6
+_COST_CN = 6e-4
+_COST_ADHESION = 5e-3
+_COST_SCENE = 2e-4
+_PULL_OFF_SOLVES = 40
+
+
+# ----------------------------------------------------------------------------------------------
+# the work: one scene, one chunk of scenes (module level, so that dask can ship it)
+# ----------------------------------------------------------------------------------------------
+def _solve_scene(surface, solve_kw, pressure, options):
+    """Solve one scene at every pressure; a dict of plain arrays and strings."""
+    n_p = pressure.size
+    dg = solve_kw["work_of_adhesion"]
+    adhesive = dg > 0.0
+    zeta = options["zeta_adhesive"] if adhesive else options["zeta_plain"]
+    # without adhesion a tensile nominal stress separates the surfaces: A = 0, no solve
+    rows = np.arange(n_p) if adhesive else np.flatnonzero(pressure >= 0.0)
+    out = {
+        "area": np.zeros(n_p),
+        "mean_contact_pressure": np.full(n_p, np.nan),
+        "error_estimate": np.zeros(n_p),
+        "status": np.zeros(n_p, dtype=np.int64),
+        "success": True,
+        "message": "ok",
+        "method": "none",
+    }
+    n_z = 0 if options["profile_zeta"] is None else options["profile_zeta"].size
+    if options["profiles"]:
+        for name in ("area_zeta", "sigma_a", "gamma_eff"):
+            out[name] = np.zeros((n_p, n_z))
+    if rows.size:
+        r = solve_contact(surface, pressure[rows], method=options["method"], rtol=options["rtol"],
+                          zeta=zeta, parallel=options["parallel"], **solve_kw)
+        out["area"][rows] = r.area
+        mcp = getattr(r, "mean_contact_pressure", None)
+        if mcp is None:
+            mcp = np.where(r.area > 0, r.load / np.where(r.area > 0, r.area, 1.0), np.nan)
+        out["mean_contact_pressure"][rows] = mcp
+        out["error_estimate"][rows] = r.error_estimate
+        out["status"][rows] = r.status
+        out["success"] = bool(r.success)
+        out["message"] = str(r.message)
+        out["method"] = str(r.method)
+        if options["profiles"]:
+            if not np.array_equal(r.zeta, options["profile_zeta"]):
+                raise RuntimeError("scan: a scene returned profiles on another zeta grid than "
+                                   "the scan's; pass zeta= explicitly")
+            out["area_zeta"][rows] = r.area_zeta
+            out["sigma_a"][rows] = r.sigma_a
+            out["gamma_eff"][rows] = r.gamma_eff
+    if options["pull_off"]:
+        try:
+            out["pull_off"] = float(_pull_off(surface, rtol=options["pull_off_rtol"], **solve_kw))
+        except RuntimeError as exc:
+            out["pull_off"] = math.nan
+            out["success"] = False
+            note = f"pull_off failed: {exc}"
+            out["message"] = note if out["message"] == "ok" else f"{out['message']}; {note}"
+    return out
+
+
+def solve_chunk(scenes, pressure, options):
+    """Solve a chunk of scenes one after another (the task of the distributed path).
+
+    Parameters
+    ----------
+    scenes : list of (int, Surface, dict)
+        Flat scene index, surface, and the keyword arguments of :func:`solve_contact`
+        (``e_star``, ``work_of_adhesion``, ``energy_correction``, ``detachment_prefactor``).
+    pressure : numpy.ndarray, shape (n_p,)
+        Nominal pressures. [Pa]
+    options : dict
+        Solve options built by :func:`scan`.
+
+    Returns
+    -------
+    list of (int, dict)
+        The scene index and its results, in the order of ``scenes``.
+    """
+    return [(index, _solve_scene(surface, kw, pressure, options))
+            for index, surface, kw in scenes]
+
+
+# ----------------------------------------------------------------------------------------------
+# argument checks
+# ----------------------------------------------------------------------------------------------
+def _factory_name(factory) -> str:
+    if isinstance(factory, Surface):
+        return type(factory).__name__
+    inner = getattr(factory, "func", factory)          # functools.partial
+    return getattr(inner, "__qualname__", type(inner).__name__)
+
+
+def _factory_parameters(factory):
+    """Names the factory accepts as keywords; None when it takes ``**kwargs``."""
+    try:
+        sig = inspect.signature(factory)
+    except (TypeError, ValueError):
+        return None
+    names = []
+    for p in sig.parameters.values():
+        if p.kind is inspect.Parameter.VAR_KEYWORD:
+            return None
+        if p.kind in (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY):
+            names.append(p.name)
+    return tuple(names)
+
+
+def _check_values(name, values):
+    """One entry of ``params``: (is_dimension, coordinate array, values to pass on)."""
+    label = f"params[{name!r}]"
+    if isinstance(values, (str, bytes)) or np.ndim(values) == 0:
+        if name == "energy_correction" and values is None:
+            return False, np.array(np.nan), [None]
+        arr = np.asarray(values)
+        if arr.dtype.kind in "iuf":
+            check_finite(arr.astype(float), label, PARAMETER_UNITS.get(name, "-"))
+        return False, arr, [values.item() if isinstance(values, np.generic) else values]
+    try:
+        raw = list(values)
+    except TypeError as exc:
+        raise ValueError(f"{label} must be a scalar or a 1-D sequence of values; "
+                         f"got {values!r}") from exc
+    if name == "energy_correction":
+        raw = [math.nan if v is None else v for v in raw]
+    arr = np.asarray(raw)
+    if arr.ndim != 1:
+        raise ValueError(f"{label} must be a scalar or a 1-D sequence of values; "
+                         f"got shape {arr.shape}")
+    if arr.size == 0:
+        raise ValueError(f"{label} must hold at least one value; got an empty sequence")
+    if arr.dtype.kind in "iuf":
+        values_out = arr.tolist()
+        finite = np.isfinite(arr.astype(float))
+        if name == "energy_correction":
+            values_out = [None if math.isnan(v) else v for v in values_out]
+        elif not np.all(finite):
+            i = int(np.argmin(finite))
+            raise ValueError(f"{label} must be finite [{PARAMETER_UNITS.get(name, '-')}]; "
+                             f"got {label}[{i}] = {arr[i].item()!r}")
+    else:
+        arr = np.empty(len(raw), dtype=object)
+        arr[:] = raw
+        values_out = raw
+    seen = {}
+    for i, v in enumerate(arr.tolist()):
+        key = "nan" if isinstance(v, float) and math.isnan(v) else v
+        try:
+            if key in seen:
+                raise ValueError(f"{label} must hold distinct values (they label an axis); got "
+                                 f"{label}[{seen[key]}] = {label}[{i}] = {v!r}")
+            seen[key] = i
+        except TypeError:
+            break                                          # unhashable values: no check
+    return True, arr, values_out
+
+
+def _check_solve_value(name, value, label):
+    """Validate one value of a solve parameter; return it as a float (or None)."""
+    if name == "energy_correction":
+        if value is None:
+            return None
+        arr = as_float_array(value, label, "-", ndim=(0,))
+        check_finite(arr, label, "-")
+        if not 0.0 <= float(arr) <= 1.0:
+            raise ValueError(f"{label} must lie in [0, 1] [-] (or be None); "
+                             f"got {label} = {float(arr)!r}")
+        return float(arr)
+    unit = PARAMETER_UNITS[name]
+    arr = as_float_array(value, label, unit, ndim=(0,))
+    if name == "work_of_adhesion":
+        check_nonnegative(arr, label, unit)
+    else:
+        check_positive(arr, label, unit)
+    return float(arr)
+
+
+def _check_rtol(rtol, name="rtol"):
+    arr = as_float_array(rtol, name, "-", ndim=(0,))
+    check_finite(arr, name, "-")
+    value = float(arr)
+    if not 1e-12 <= value <= 0.1:
+        raise ValueError(f"{name} must lie in [1e-12, 0.1] [-]; got {name} = {value!r}")
+    return value
+
+
+def _check_pressure(pressure):
+    p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))
+    check_finite(p, "pressure", "Pa")
+    p = np.atleast_1d(p).astype(np.float64)
+    if p.size == 0:
+        raise ValueError("pressure must hold at least one nominal pressure [Pa]; "
+                         "got an empty array")
+    return p
+
+
+def _check_positive_int(value, name):
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise ValueError(f"{name} must be a positive integer or None; got {name} = {value!r}")
+    return int(value)
+
+
+def _check_progress(progress):
+    if progress is None or isinstance(progress, bool) or callable(progress):
+        return progress
+    raise ValueError(f"progress must be None, True, False or a callable progress(done, total); "
+                     f"got progress = {progress!r}")
+
+
+def _check_zeta(zeta, surfaces):
+    """A user zeta grid: 1-D, starting at 1, increasing, inside every scene's band."""
+    if zeta is None:
+        return None
+    z = as_float_array(zeta, "zeta", "-", ndim=(1,))
+    check_finite(z, "zeta", "-")
+    if z.size == 0 or z[0] != 1.0:
+        first = z[0].item() if z.size else None
+        raise ValueError(f"zeta must start at 1 [-]; got zeta[0] = {first!r}")
+    if np.any(np.diff(z) <= 0):
+        i = int(np.argmax(np.diff(z) <= 0))
+        raise ValueError(f"zeta must be increasing [-]; got zeta[{i}] = {z[i].item()!r} >= "
+                         f"zeta[{i + 1}] = {z[i + 1].item()!r}")
+    for label, s in surfaces:
+        zeta1 = s.q1 / s.q0
+        if z[-1] > zeta1 * (1 + 1e-12):
+            raise ValueError(f"zeta must lie in [1, q1/q0] [-] for every scene; the scene {label} "
+                             f"has q1/q0 = {zeta1!r}, got zeta[-1] = {z[-1].item()!r}")
+    return z
+
+
+# ----------------------------------------------------------------------------------------------
+# the grid of scenes
+# ----------------------------------------------------------------------------------------------
+class _Grid:
+    """The scene grid: dimensions, coordinates, fixed values, surfaces and solve arguments."""
+
+    def __init__(self, surface, params, solve_keywords):
+        if not isinstance(params, dict):
+            raise ValueError(f"params must be a dict {{name: values}}; got {type(params).__name__}")
+        is_instance = isinstance(surface, Surface)
+        if not is_instance and not callable(surface):
+            raise ValueError("surface must be a surface model class or factory "
+                             f"(e.g. pf.SelfAffine) or a Surface instance; got {surface!r}")
+        self.factory = surface
+        self.factory_name = _factory_name(surface)
+        accepted = () if is_instance else _factory_parameters(surface)
+        self.dims, self.coords, self.values = [], {}, {}
+        self.fixed_coords, fixed = {}, {}
+        for name, values in params.items():
+            if not isinstance(name, str) or not name.isidentifier():
+                raise ValueError(f"params keys must be parameter names (identifiers); got {name!r}")
+            if name in _RESERVED:
+                raise ValueError(f"params cannot hold {name!r}: it is an axis of the result "
+                                 f"(pass the pressures as the `pressure` argument)")
+            if name not in SOLVE_PARAMETERS:
+                if is_instance:
+                    raise ValueError(
+                        f"params[{name!r}] is a surface parameter, but surface is an instance of "
+                        f"{self.factory_name}; pass the class or a factory (e.g. pf.SelfAffine) to "
+                        f"scan its parameters, or scan only {', '.join(SOLVE_PARAMETERS)}")
+                if accepted is not None and name not in accepted:
+                    raise ValueError(
+                        f"params key {name!r} is neither a parameter of {self.factory_name} "
+                        f"({', '.join(accepted)}) nor a solve parameter "
+                        f"({', '.join(SOLVE_PARAMETERS)})")
+            is_dim, coord, passed = _check_values(name, values)
+            if is_dim:
+                self.dims.append(name)
+                self.coords[name] = coord
+                self.values[name] = passed
+            else:
+                if passed[0] is not None:
+                    self.fixed_coords[name] = coord
+                fixed[name] = passed[0]
+        # solve parameters: from params, or from the keywords of scan
+        for name in SOLVE_PARAMETERS:
+            given = solve_keywords[name]
+            if name in params:
+                default = _SOLVE_DEFAULTS[name]
+                if not (given is default or (given is not None and default is not None
+                                             and np.ndim(given) == 0 and given == default)):
+                    raise ValueError(f"{name} is given twice: as a keyword ({given!r}) and "
+                                     f"as a key of params; keep one")
+            elif name == "e_star" and given is None:
+                raise ValueError("e_star must be given, as a keyword or as a key of params [Pa]; "
+                                 "got none")
+            else:
+                fixed[name] = given
+        self.checked = {}
+        for name in SOLVE_PARAMETERS:
+            if name in self.values:
+                self.checked[name] = [
+                    _check_solve_value(name, v, f"params[{name!r}][{i}]")
+                    for i, v in enumerate(self.values[name])]
+            else:
+                label = f"params[{name!r}]" if name in params else name
+                fixed[name] = _check_solve_value(name, fixed[name], label)
+        self.fixed = fixed
+        self.shape = tuple(len(self.values[d]) for d in self.dims)
+        self.n_scenes = int(np.prod(self.shape, dtype=np.int64)) if self.shape else 1
+        self.surface_dims = [d for d in self.dims if d not in SOLVE_PARAMETERS]
+        self._build(surface, is_instance)
+
+    def _label(self, index_tuple) -> str:
+        parts = [f"{d}={self.values[d][i]!r}" for d, i in zip(self.dims, index_tuple)]
+        return "(" + ", ".join(parts) + ")" if parts else "(the only scene)"
+
+    def _build(self, surface, is_instance):
+        fixed_surface = {k: v for k, v in self.fixed.items() if k not in SOLVE_PARAMETERS}
+        surf_pos = [self.dims.index(d) for d in self.surface_dims]
+        cache = {}
+        self.scenes = []          # (flat index, surface, solve kwargs)
+        self.labels = []
+        self.surfaces = []        # distinct surfaces with a label, for checks
+        for flat, idx in enumerate(itertools.product(*[range(n) for n in self.shape])):
+            key = tuple(idx[k] for k in surf_pos)
+            if key not in cache:
+                if is_instance:
+                    s = surface
+                else:
+                    kw = dict(fixed_surface)
+                    kw.update({d: self.values[d][idx[self.dims.index(d)]]
+                               for d in self.surface_dims})
+                    try:
+                        s = surface(**kw)
+                    except (ValueError, TypeError) as exc:
+                        raise ValueError(f"{self.factory_name}(...) failed for the scene "
+                                         f"{self._label(idx)}: {exc}") from exc
+                    if not isinstance(s, Surface):
+                        raise ValueError(f"surface factory {self.factory_name} must return a "
+                                         f"persson_fast Surface; got {type(s).__name__}")
+                cache[key] = s
+                self.surfaces.append((self._label(idx), s))
+            kw = {}
+            for name in SOLVE_PARAMETERS:
+                if name in self.values:
+                    kw[name] = self.checked[name][idx[self.dims.index(name)]]
+                else:
+                    kw[name] = self.fixed[name]
+            self.scenes.append((flat, cache[key], kw))
+            self.labels.append(self._label(idx))
+
+
+def _profile_grid(grid, zeta, rtol, any_adhesive):
+    """The common zeta grid of the profiles, and the zeta to pass to each kind of scene."""
+    if zeta is not None:
+        return zeta, zeta, zeta
+    if any_adhesive:
+        grids = [(lab, adhesion_zeta(s, rtol)) for lab, s in grid.surfaces]
+        what = "adhesion_zeta(surface, rtol)"
+    else:
+        grids = [(lab, default_zeta(s)) for lab, s in grid.surfaces]
+        what = "default_zeta(surface)"
+    first_label, common = grids[0]
+    for lab, g in grids[1:]:
+        if not np.array_equal(g, common):
+            raise ValueError(
+                f"profiles=True needs one zeta grid for all scenes, but the default grids "
+                f"({what}) of the scenes {first_label} and {lab} differ (the scan changes the "
+                f"band q0, q1 or the roll-off); pass zeta= explicitly")
+    # adhesive scenes keep their default grid (None, bitwise as solve_contact); scenes without
+    # adhesion are evaluated on the same grid (their closed form is exact on any grid)
+    return common, (None if any_adhesive else common), common
+
+
+def _estimate_seconds(grid, n_p, options, workers):
+    total = 0.0
+    closed = options["method"] in ("auto", "analytic")
+    for _, _, kw in grid.scenes:
+        if kw["work_of_adhesion"] > 0:
+            per = _COST_ADHESION * (1e-4 / options["rtol"]) ** 0.45
+            total += per * n_p
+            if options["pull_off"]:
+                per_po = _COST_ADHESION * (1e-4 / options["pull_off_rtol"]) ** 0.45
+                total += _PULL_OFF_SOLVES * per_po
+        else:
+            total += (_COST_CLOSED_FORM if closed else _COST_CN) * n_p
+        total += _COST_SCENE
+    return total / max(1, workers)
+
+
+class _Progress:
+    """A tqdm bar, a user callback progress(done, total), or nothing."""
+
+    def __init__(self, progress, total, estimate):
+        self.callback = progress if callable(progress) and not isinstance(progress, bool) else None
+        self.bar = None
+        self.done = 0
+        self.total = total
+        show = progress is True or (
+            progress is None
+            and (total > PROGRESS_MIN_SCENES or estimate > PROGRESS_MIN_SECONDS)
+            and _stderr_is_terminal())
+        if show:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=total, unit="scene", desc="scan", file=sys.stderr,
+                            dynamic_ncols=True)
+
+    def update(self, n):
+        self.done += n
+        if self.bar is not None:
+            self.bar.update(n)
+        if self.callback is not None:
+            self.callback(self.done, self.total)
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _stderr_is_terminal() -> bool:
+    try:
+        return bool(sys.stderr.isatty())
+    except (AttributeError, ValueError):
+        return False
+
+
+# ----------------------------------------------------------------------------------------------
+# execution paths
+# ----------------------------------------------------------------------------------------------
+def _run_local(grid, pressure, options, workers, progress, results):
+    closed = (options["method"] in ("auto", "analytic")
+              and all(kw["work_of_adhesion"] == 0 for _, _, kw in grid.scenes))
+    if closed or workers == 1 or grid.n_scenes == 1:
+        # closed forms are microseconds of Python (threads would only add overhead); one
+        # scene or one worker: solve_contact picks its own pressure parallelism
+        for index, surface, kw in grid.scenes:
+            results[index] = _solve_scene(surface, kw, pressure, options)
+            progress.update(1)
+        return "local, sequential"
+    opts = dict(options, parallel=False)      # threads over scenes, serial kernels inside
+    pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="persson-scan")
+    futures = {}
+    try:
+        for index, surface, kw in grid.scenes:
+            futures[pool.submit(_solve_scene, surface, kw, pressure, opts)] = index
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, timeout=0.2, return_when=FIRST_COMPLETED)
+            for fut in done:
+                index = futures[fut]
+                try:
+                    results[index] = fut.result()
+                except BaseException as exc:
+                    _add_note(exc, f"in scan scene {grid.labels[index]}")
+                    raise
+                progress.update(1)
+    finally:
+        # on an interrupt or error: drop the scenes not started, wait for the running ones
+        for fut in futures:
+            fut.cancel()
+        pool.shutdown(wait=True, cancel_futures=True)
+    return f"local, {workers} threads over scenes"
+
+
+def _add_note(exc, note):
+    if hasattr(exc, "add_note"):
+        exc.add_note(note)
+
+
+def _warm_worker():
+    """Load the serial kernels on a worker (from numba's disk cache after the first time)."""
+    from . import warmup
+
+    return warmup(False)
+
+
+def _worker_threads(client) -> int:
+    try:
+        info = client.scheduler_info()
+        return max(1, sum(int(w.get("nthreads", 1)) for w in info.get("workers", {}).values()))
+    except Exception:  # noqa: BLE001 -- a best guess only decides the chunk size
+        return 1
+
+
+def _run_distributed(client, grid, pressure, options, chunks, progress, results):
+    from distributed import as_completed
+
+    opts = dict(options, parallel=False)
+    if chunks is None:
+        n_tasks = 4 * _worker_threads(client)
+        chunks = max(1, -(-grid.n_scenes // n_tasks))
+    groups = [grid.scenes[i:i + chunks] for i in range(0, grid.n_scenes, chunks)]
+    client.run(_warm_worker)
+    token = uuid.uuid4().hex[:12]
+    keys = [f"persson-scan-{token}-{k}" for k in range(len(groups))]
+    futures = None
+    try:
+        futures = client.map(solve_chunk, groups, [pressure] * len(groups),
+                             [opts] * len(groups), key=keys, pure=False)
+        for fut in as_completed(futures):
+            chunk = fut.result()
+            for index, res in chunk:
+                results[index] = res
+            progress.update(len(chunk))
+            del fut
+    except BaseException:
+        # an interrupt or a failed chunk: no task of this scan may stay on the cluster
+        if futures is None:
+            from distributed import Future
+
+            futures = [Future(k, client=client) for k in keys]
+        client.cancel(futures, force=True)
+        raise
+    finally:
+        futures = None
+    return f"distributed, {len(groups)} tasks of <= {chunks} scenes"
+
+
+def _open_client(client):
+    """(client, cluster we own or None, client we own or None)."""
+    if client is None:
+        return None, None, None
+    if isinstance(client, str):
+        from distributed import Client, LocalCluster
+
+        if client == "local":
+            cluster = LocalCluster(n_workers=None, threads_per_worker=1, processes=True,
+                                   dashboard_address=":0")
+            try:
+                own = Client(cluster)
+            except BaseException:
+                cluster.close()
+                raise
+            return own, cluster, own
+        own = Client(client)
+        return own, None, own
+    for attr in ("map", "cancel", "run", "submit"):
+        if not hasattr(client, attr):
+            raise ValueError(f"client must be None, 'local', a scheduler address or a "
+                             f"dask.distributed.Client; got {client!r}")
+    return client, None, None
+
+
+# ----------------------------------------------------------------------------------------------
+# the public function
+# ----------------------------------------------------------------------------------------------
+def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
+         detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None, profiles=False,
+         pull_off=False, pull_off_rtol=None, client=None, chunks=None, workers=None,
+         progress=None):
+    """Contact area over a grid of scenes crossed with nominal pressures.
+
+    Parameters
+    ----------
+    surface : type, callable or Surface
+        A surface model class or factory called as ``surface(**surface_parameters)`` for
+        each scene (e.g. ``pf.SelfAffine``, ``pf.CapillaryWaves``, a ``functools.partial``
+        or any function returning a :class:`~persson_fast.Surface`); or one Surface
+        instance when only solve parameters are scanned.
+    params : dict of str to scalar or sequence
+        The scene parameters. A sequence makes an axis of the result (named by its key, in
+        the order of the dict; its values must be distinct); a scalar is held fixed (a scalar
+        coordinate of the result). Keys are the factory's keyword arguments (``hurst``,
+        ``h_rms``, ``slope_rms``, ``q0``, ``q1``, ``temperature``, ...) or the solve
+        parameters ``e_star``, ``work_of_adhesion``, ``energy_correction`` (None or NaN: no
+        correction) and ``detachment_prefactor``.
+    pressure : float or array_like, shape (n_p,)
+        Nominal pressures, the last axis of the result. Negative values (tension) are
+        allowed: with adhesion they are solved, without adhesion the surfaces separate and
+        the area is 0 (no solve). [Pa]
+    e_star : float, optional
+        Effective modulus E* > 0, unless scanned in ``params``. [Pa]
+    work_of_adhesion : float
+        Delta gamma >= 0, unless scanned (default 0, no adhesion). [J/m^2]
+    energy_correction : float or None
+        gamma_S of the elastic-energy correction, in [0, 1], unless scanned. [-]
+    detachment_prefactor : float
+        beta of seed Eq. 8 (default 1/sqrt 2), unless scanned. [-]
+    method : str
+        As in :func:`~persson_fast.solve_contact` (a key of ``pf.METHODS``).
+    rtol : float
+        Target relative accuracy of every solve, in [1e-12, 0.1]. [-]
+    zeta : array_like or None
+        Magnifications passed to every solve (as in :func:`~persson_fast.solve_contact`; with
+        adhesion the fixed point runs on this grid). None: each scene's default. [-]
+    profiles : bool
+        Also return A(zeta)/A0, sigma_a(zeta) and gamma_eff(zeta) on a ``zeta`` axis. All
+        scenes need one grid: with ``zeta=None`` the default grids must agree (true unless
+        the band or roll-off is scanned); scenes without adhesion are then evaluated on the
+        adhesive scenes' grid, which is exact for their closed form.
+    pull_off : bool
+        Also compute the pull-off stress of every scene with :func:`~persson_fast.pull_off`
+        (0 without adhesion; NaN, with ``success`` False, where it fails). [Pa]
+    pull_off_rtol : float or None
+        Relative accuracy of the pull-off stress (default ``rtol``). [-]
+    client : None, "local", str or dask.distributed.Client
+        None: run here (threads). A Client: chunks of scenes become tasks on its cluster (the
+        client stays open). ``"local"``: start a ``LocalCluster`` of single-threaded worker
+        processes for this scan and close it afterwards (in a script, call scan under
+        ``if __name__ == "__main__":``, as worker processes are spawned). Any other string:
+        the address of a scheduler to connect to (the connection is closed afterwards).
+    chunks : int or None
+        Scenes per distributed task (default: about four tasks per worker thread).
+    workers : int or None
+        Threads of the local path (default ``numba.get_num_threads()``); 1 runs the scenes one
+        after another, each spreading its pressures over threads as ``solve_contact`` does.
+    progress : None, bool or callable
+        Show a tqdm progress bar: None shows it for scans of more than 50 scenes or longer
+        than about 2 s, when stderr is a terminal; True / False force it on / off. A callable
+        is called as ``progress(done, total)`` (in scenes) after each scene or chunk.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions: the scanned parameters in the order of ``params``, then ``pressure``
+        (then ``zeta`` with ``profiles``). Variables:
+
+        * ``area`` (..., pressure) -- A(zeta1)/A0. [-]
+        * ``mean_contact_pressure`` (..., pressure) -- load / area, NaN without contact. [Pa]
+        * ``error_estimate`` (..., pressure) -- estimated absolute error of ``area``. [-]
+        * ``status`` (..., pressure) -- 0 ok, else see ``message``.
+        * ``success``, ``message``, ``method`` (...) -- per scene.
+        * ``area_zeta``, ``sigma_a`` [Pa], ``gamma_eff`` [J/m^2] (..., pressure, zeta) -- with
+          ``profiles``.
+        * ``pull_off`` (...) -- with ``pull_off``. [Pa]
+
+        Fixed parameters are scalar coordinates; ``attrs`` hold the surface model, method,
+        rtol and how the scan ran. ``ds.to_dataframe()`` gives one row per (scene, pressure).
+
+    Raises
+    ------
+    ValueError
+        For invalid input, naming the argument, the rule and the offending value, before
+        anything is solved (every scene's surface is built and checked first).
+
+    Notes
+    -----
+    Scene ``s`` of the grid is ``solve_contact(surface_s, pressure, e_star=..., ...)``; the
+    dataset holds exactly its numbers, whichever execution path ran (see the module
+    docstring). A ``KeyboardInterrupt`` stops the scan: scenes not yet started are dropped
+    (distributed: the pending tasks are cancelled) and the interrupt propagates.
+
+    Examples
+    --------
+    >>> import numpy as np, persson_fast as pf
+    >>> ds = pf.scan(pf.SelfAffine, {"hurst": [0.6, 0.8], "h_rms": [1e-7, 1e-6],
+    ...              "q0": 1e4, "q1": 1e9}, np.linspace(0, 1e7, 11), e_star=3e9)
+    >>> ds.area.dims
+    ('hurst', 'h_rms', 'pressure')
+    """
+    import xarray as xr
+
+    from . import __version__
+
+    solve_keywords = {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
+                      "energy_correction": energy_correction,
+                      "detachment_prefactor": detachment_prefactor}
+    if not isinstance(method, str) or method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(repr(m) for m in METHODS)}; "
+                         f"got method = {method!r}")
+    rtol = _check_rtol(rtol)
+    pull_off_rtol = rtol if pull_off_rtol is None else _check_rtol(pull_off_rtol, "pull_off_rtol")
+    p = _check_pressure(pressure)
+    for name, flag in (("profiles", profiles), ("pull_off", pull_off)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise ValueError(f"{name} must be True or False; got {name} = {flag!r}")
+    chunks = _check_positive_int(chunks, "chunks")
+    workers = _check_positive_int(workers, "workers")
+    progress = _check_progress(progress)
+    grid = _Grid(surface, params, solve_keywords)
+    zeta = _check_zeta(zeta, grid.surfaces)
+    adhesive = [kw["work_of_adhesion"] > 0 for _, _, kw in grid.scenes]
+    if method == "analytic" and any(adhesive):
+        i = adhesive.index(True)
+        raise ValueError(f"method 'analytic' has no closed form with adhesion; the scene "
+                         f"{grid.labels[i]} has work_of_adhesion > 0; use method='auto' or 'cn'")
+    profile_zeta = None
+    zeta_plain = zeta_adhesive = zeta
+    if profiles:
+        profile_zeta, zeta_adhesive, zeta_plain = _profile_grid(
+            grid, zeta, rtol, any(adhesive))
+    options = {"method": method, "rtol": rtol, "zeta_plain": zeta_plain,
+               "zeta_adhesive": zeta_adhesive, "profile_zeta": profile_zeta,
+               "profiles": bool(profiles), "pull_off": bool(pull_off),
+               "pull_off_rtol": pull_off_rtol, "parallel": None}
+    if workers is None:
+        import numba
+
+        workers = max(1, int(numba.get_num_threads()))
+
+    results = [None] * grid.n_scenes
+    t0 = time.perf_counter()
+    client_, own_cluster, own_client = None, None, None
+    bar = None
+    try:
+        client_, own_cluster, own_client = _open_client(client)
+        threads = _worker_threads(client_) if client_ is not None else workers
+        bar = _Progress(progress, grid.n_scenes, _estimate_seconds(grid, p.size, options, threads))
+        if client_ is None:
+            execution = _run_local(grid, p, options, workers, bar, results)
+        else:
+            execution = _run_distributed(client_, grid, p, options, chunks, bar, results)
+    finally:
+        if bar is not None:
+            bar.close()
+        if own_client is not None:
+            own_client.close()
+        if own_cluster is not None:
+            own_cluster.close()
+    wall = time.perf_counter() - t0
+    return _assemble(xr, grid, p, results, options, profile_zeta,
+                     {"surface_model": grid.factory_name, "method": method, "rtol": rtol,
+                      "pull_off_rtol": pull_off_rtol if pull_off else "",
+                      "execution": execution, "wall_time_s": wall,
+                      "persson_fast_version": __version__})
+
+
+def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
+    shape = grid.shape
+    n_p = p.size
+    dims = tuple(grid.dims)
+    per_p = dims + ("pressure",)
+
+    def stack(name, dtype, tail=()):
+        arr = np.empty((grid.n_scenes,) + tail, dtype=dtype)
+        for i, res in enumerate(results):
+            arr[i] = res[name]
+        return arr.reshape(shape + tail)
+
+    data = {
+        "area": (per_p, stack("area", float, (n_p,)),
+                 {"long_name": "relative real contact area A(zeta1)/A0", "units": "-"}),
+        "mean_contact_pressure": (per_p, stack("mean_contact_pressure", float, (n_p,)),
+                                  {"long_name": "mean stress in the contact, load/area",
+                                   "units": "Pa"}),
+        "error_estimate": (per_p, stack("error_estimate", float, (n_p,)),
+                           {"long_name": "estimated absolute error of area", "units": "-"}),
+        "status": (per_p, stack("status", np.int64, (n_p,)),
+                   {"long_name": "status per pressure (0 ok, see message)"}),
+        "success": (dims, stack("success", bool), {"long_name": "all pressures solved"}),
+        "message": (dims, stack("message", object).astype(str), {"long_name": "solver message"}),
+        "method": (dims, stack("method", object).astype(str),
+                   {"long_name": "method that produced the numbers"}),
+    }
+    coords = {d: (d, grid.coords[d], {"units": PARAMETER_UNITS[d]} if d in PARAMETER_UNITS else {})
+              for d in dims}
+    coords["pressure"] = ("pressure", p, {"long_name": "nominal pressure", "units": "Pa"})
+    for name, value in grid.fixed_coords.items():
+        units = {"units": PARAMETER_UNITS[name]} if name in PARAMETER_UNITS else {}
+        coords[name] = ((), value, units)
+    if options["profiles"]:
+        n_z = profile_zeta.size
+        per_z = per_p + ("zeta",)
+        coords["zeta"] = ("zeta", profile_zeta, {"long_name": "magnification", "units": "-"})
+        data["area_zeta"] = (per_z, stack("area_zeta", float, (n_p, n_z)),
+                             {"long_name": "relative contact area A(zeta)/A0", "units": "-"})
+        data["sigma_a"] = (per_z, stack("sigma_a", float, (n_p, n_z)),
+                           {"long_name": "detachment stress sigma_a(zeta)", "units": "Pa"})
+        data["gamma_eff"] = (per_z, stack("gamma_eff", float, (n_p, n_z)),
+                             {"long_name": "effective interfacial energy", "units": "J/m^2"})
+    if options["pull_off"]:
+        data["pull_off"] = (dims, stack("pull_off", float),
+                            {"long_name": "pull-off stress sigma_c", "units": "Pa"})
+    return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -1,0 +1,313 @@
+"""Tests of persson_fast.scan: labels and values against direct solve_contact calls, input
+validation, the distributed path (bitwise equal to the local one), interrupts, progress."""
+import importlib
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import persson_fast as pf
+
+xr = pytest.importorskip("xarray")
+distributed = pytest.importorskip("distributed")
+
+from persson_fast.scan import scan  # noqa: E402  (after the optional-dependency skips)
+
+# the module itself (``persson_fast.scan`` may be shadowed by the function in the package)
+scan_module = importlib.import_module("persson_fast.scan")
+
+E_STAR = 2.9e9 / (1.0 - 0.3**2)             # seed PMMA [Pa]
+SEED = pf.seed_scene()
+SEED_KW = {"surface_tension": 0.04, "q_c": 1.7e9, "q0": SEED.q0, "q1": 7e9}
+P_PLAIN = np.linspace(0.0, 4e7, 9)                        # [Pa]
+P_ADH = np.array([-0.3e6, 0.0, 1e6, 1e7, 5e7])            # tension included [Pa]
+SA_PARAMS = {"hurst": [0.6, 0.8], "h_rms": [1e-7, 3e-7, 1e-6], "q0": 1e4, "q1": 1e9}
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _warm_kernels():
+    """Load only the serial kernels (disk-cached, about 1 s).
+
+    Replaces the suite-wide warm-up for this module: scans run the serial kernels (threads
+    over scenes, or one chunk after another on a worker), and compiling the parallel ones,
+    which are not cached on disk, would cost 5-15 s per process without being used here.
+    """
+    pf.warmup(False)
+
+
+def _bitwise_equal(a, b) -> bool:
+    a, b = np.asarray(a), np.asarray(b)
+    return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()
+
+
+def _assert_datasets_bitwise_equal(a, b):
+    assert a.sizes == b.sizes
+    assert set(a.data_vars) == set(b.data_vars)
+    for name in a.variables:
+        va, vb = a[name].values, b[name].values
+        if va.dtype.kind in "fiub":
+            assert _bitwise_equal(va, vb), name
+        else:
+            assert np.array_equal(va, vb), name
+
+
+@pytest.fixture(scope="module")
+def adhesive_scan():
+    """Seed-like capillary waves at two temperatures, with and without adhesion."""
+    return scan(pf.CapillaryWaves, {"temperature": [350.0, 370.0], "work_of_adhesion": [0.0, 0.06],
+                                    **SEED_KW},
+                P_ADH, e_star=E_STAR, rtol=1e-3, profiles=True, pull_off=True, progress=False)
+
+
+# ---------------------------------------------------------------------------------------------
+# labels, shapes and values against direct calls
+# ---------------------------------------------------------------------------------------------
+def test_closed_form_scan_equals_direct_calls():
+    ds = scan(pf.SelfAffine, SA_PARAMS, P_PLAIN, e_star=1e9, progress=False)
+    assert ds.area.dims == ("hurst", "h_rms", "pressure")
+    assert ds.area.shape == (2, 3, P_PLAIN.size)
+    assert ds.success.dims == ("hurst", "h_rms")
+    np.testing.assert_array_equal(ds.hurst.values, [0.6, 0.8])
+    np.testing.assert_array_equal(ds.h_rms.values, [1e-7, 3e-7, 1e-6])
+    np.testing.assert_array_equal(ds.pressure.values, P_PLAIN)
+    assert float(ds.q0) == 1e4 and float(ds.q1) == 1e9            # fixed: scalar coordinates
+    assert ds.h_rms.attrs["units"] == "m" and ds.area.attrs["units"] == "-"
+    for i, h in enumerate(SA_PARAMS["hurst"]):
+        for j, hr in enumerate(SA_PARAMS["h_rms"]):
+            r = pf.solve_contact(pf.SelfAffine(hurst=h, h_rms=hr, q0=1e4, q1=1e9), P_PLAIN,
+                                 e_star=1e9)
+            assert _bitwise_equal(ds.area.values[i, j], r.area)
+            assert _bitwise_equal(ds.status.values[i, j], r.status)
+            np.testing.assert_array_equal(ds.mean_contact_pressure.values[i, j],
+                                          r.mean_contact_pressure)
+            assert bool(ds.success.values[i, j]) and ds.message.values[i, j] == r.message
+    assert len(ds.to_dataframe()) == 2 * 3 * P_PLAIN.size          # tidy: a row per point
+
+
+def test_cn_scan_on_threads_equals_direct_calls_and_sequential():
+    params = {"hurst": [0.6, 0.7, 0.8], "h_rms": 1e-6, "q0": 1e4, "q1": 1e8}
+    ds = scan(pf.SelfAffine, params, P_PLAIN[1:], e_star=1e9, method="cn", rtol=1e-4,
+              workers=2, progress=False)
+    assert ds.attrs["execution"].startswith("local, 2 threads")
+    for i, h in enumerate(params["hurst"]):
+        r = pf.solve_contact(pf.SelfAffine(hurst=h, h_rms=1e-6, q0=1e4, q1=1e8), P_PLAIN[1:],
+                             e_star=1e9, method="cn", rtol=1e-4)
+        assert _bitwise_equal(ds.area.values[i], r.area)
+        assert ds.method.values[i] == "cn"
+    seq = scan(pf.SelfAffine, params, P_PLAIN[1:], e_star=1e9, method="cn", rtol=1e-4,
+               workers=1, progress=False)
+    assert seq.attrs["execution"] == "local, sequential"
+    _assert_datasets_bitwise_equal(ds, seq)
+
+
+def test_adhesive_scan_equals_direct_calls(adhesive_scan):
+    ds = adhesive_scan
+    assert ds.area.dims == ("temperature", "work_of_adhesion", "pressure")
+    assert ds.area_zeta.dims == ("temperature", "work_of_adhesion", "pressure", "zeta")
+    assert ds.pull_off.dims == ("temperature", "work_of_adhesion")
+    for i, temp in enumerate([350.0, 370.0]):
+        surface = pf.CapillaryWaves(temperature=temp, **SEED_KW)
+        # without adhesion: tension separates the surfaces (A = 0, no solve)
+        plain = ds.isel(temperature=i, work_of_adhesion=0)
+        r0 = pf.solve_contact(surface, P_ADH[1:], e_star=E_STAR, rtol=1e-3,
+                              zeta=ds.zeta.values)
+        assert plain.area.values[0] == 0.0 and np.isnan(plain.mean_contact_pressure.values[0])
+        assert _bitwise_equal(plain.area.values[1:], r0.area)
+        assert _bitwise_equal(plain.area_zeta.values[1:], r0.area_zeta)
+        assert float(plain.pull_off) == 0.0
+        # with adhesion: all pressures, the default zeta grid, pull-off
+        adh = ds.isel(temperature=i, work_of_adhesion=1)
+        r1 = pf.solve_contact(surface, P_ADH, e_star=E_STAR, work_of_adhesion=0.06, rtol=1e-3)
+        assert _bitwise_equal(adh.area.values, r1.area)
+        assert _bitwise_equal(adh.status.values, r1.status)
+        assert _bitwise_equal(adh.sigma_a.values, r1.sigma_a)
+        assert _bitwise_equal(adh.gamma_eff.values, r1.gamma_eff)
+        np.testing.assert_array_equal(ds.zeta.values, r1.zeta)
+        sigma_c = pf.pull_off(surface, e_star=E_STAR, work_of_adhesion=0.06, rtol=1e-3)
+        assert float(adh.pull_off) == sigma_c > 0
+        assert adh.area.values[0] > 0                # -0.3 MPa is above -sigma_c: contact
+
+
+def test_surface_instance_scans_solve_parameters():
+    ds = scan(SEED, {"e_star": [1e9, 3e9]}, [1e6, 1e7], progress=False)
+    for k, e in enumerate([1e9, 3e9]):
+        r = pf.solve_contact(SEED, [1e6, 1e7], e_star=e)
+        assert _bitwise_equal(ds.area.values[k], r.area)
+    assert ds.attrs["surface_model"] == "CapillaryWaves"
+
+
+def test_no_scanned_parameter_gives_pressure_axis_only():
+    ds = scan(SEED, {}, 5e6, e_star=E_STAR, progress=False)
+    assert ds.area.dims == ("pressure",)
+    assert ds.area.values[0] == pf.solve_contact(SEED, [5e6], e_star=E_STAR).area[0]
+
+
+# ---------------------------------------------------------------------------------------------
+# validation: argument, rule and offending value
+# ---------------------------------------------------------------------------------------------
+def _sa(**extra):
+    return {"hurst": [0.7], "h_rms": 1e-6, "q0": 1e4, "q1": 1e9, **extra}
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"params": [("hurst", [0.5])]}, r"params must be a dict"),
+    ({"params": _sa(hurts=[0.1])}, r"params key 'hurts' is neither a parameter of SelfAffine"),
+    ({"params": _sa(pressure=[1.0])}, r"params cannot hold 'pressure'"),
+    ({"params": {**_sa(), "hurst": []}}, r"params\['hurst'\] must hold at least one value"),
+    ({"params": {**_sa(), "hurst": [0.5, 0.5]}}, r"must hold distinct values.*0\.5"),
+    ({"params": {**_sa(), "hurst": [0.5, np.nan]}},
+     r"params\['hurst'\] must be finite.*\[1\] = nan"),
+    ({"params": {**_sa(), "hurst": [[0.5, 0.6]]}}, r"1-D sequence.*shape \(1, 2\)"),
+    ({"params": {**_sa(), "hurst": [0.5, 1.5]}},
+     r"scene \(hurst=1\.5\).*hurst must be in \[0, 1\]"),
+    ({"params": _sa(e_star=[1e9, -1.0]), "e_star": None},
+     r"params\['e_star'\]\[1\] must be > 0 \[Pa\].*-1\.0"),
+    ({"params": _sa(work_of_adhesion=[0.1]), "work_of_adhesion": 0.2},
+     r"work_of_adhesion is given twice"),
+    ({"params": _sa(energy_correction=[0.5, 2.0])},
+     r"energy_correction.*must lie in \[0, 1\].*2\.0"),
+    ({"e_star": None}, r"e_star must be given"),
+    ({"work_of_adhesion": -0.1},
+     r"work_of_adhesion must be >= 0 \[J/m\^2\]; got work_of_adhesion = -0\.1"),
+    ({"pressure": [1e6, np.nan]}, r"pressure must be finite \[Pa\]; got pressure\[1\] = nan"),
+    ({"pressure": []}, r"pressure must hold at least one"),
+    ({"rtol": 1.0}, r"rtol must lie in \[1e-12, 0\.1\].*1\.0"),
+    ({"method": "rk4"}, r"method must be one of .*'cn'.*got method = 'rk4'"),
+    ({"method": "analytic", "work_of_adhesion": 0.05},
+     r"'analytic' has no closed form with adhesion"),
+    ({"chunks": 0}, r"chunks must be a positive integer.*0"),
+    ({"workers": -1}, r"workers must be a positive integer.*-1"),
+    ({"progress": "yes"}, r"progress must be None, True, False or a callable"),
+    ({"profiles": "yes"}, r"profiles must be True or False"),
+    ({"zeta": [1.0, 1e6]}, r"zeta must lie in \[1, q1/q0\].*1000000\.0"),
+    ({"zeta": [2.0, 3.0]}, r"zeta must start at 1"),
+    ({"client": 42}, r"client must be None, 'local', a scheduler address or a dask"),
+    ({"surface": SEED, "params": {"hurst": [0.5]}}, r"params\['hurst'\] is a surface parameter"),
+    ({"params": {"hurst": 0.8, "h_rms": 1e-6, "q0": 1e4, "q1": [1e8, 1e9]}, "profiles": True},
+     r"profiles=True needs one zeta grid for all scenes.*pass zeta="),
+])
+def test_validation_errors(kwargs, match):
+    call = {"surface": pf.SelfAffine, "params": _sa(), "pressure": [1e6], "e_star": 1e9,
+            "progress": False}
+    call.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        scan(call.pop("surface"), call.pop("params"), call.pop("pressure"), **call)
+
+
+# ---------------------------------------------------------------------------------------------
+# progress
+# ---------------------------------------------------------------------------------------------
+def test_progress_bar_on_off_and_callback(capsys, monkeypatch):
+    params = {"hurst": np.linspace(0.5, 0.9, 60), "h_rms": 1e-6, "q0": 1e4, "q1": 1e9}
+    scan(pf.SelfAffine, params, [1e6], e_star=1e9, progress=True)
+    assert "scene" in capsys.readouterr().err
+    scan(pf.SelfAffine, params, [1e6], e_star=1e9, progress=False)
+    assert capsys.readouterr().err == ""
+    scan(pf.SelfAffine, params, [1e6], e_star=1e9)           # None, stderr not a terminal
+    assert capsys.readouterr().err == ""
+    monkeypatch.setattr(scan_module, "_stderr_is_terminal", lambda: True)
+    scan(pf.SelfAffine, params, [1e6], e_star=1e9)           # None, terminal, > 50 scenes
+    assert "60/60" in capsys.readouterr().err
+    scan(pf.SelfAffine, {**params, "hurst": [0.5, 0.6]}, [1e6], e_star=1e9)  # short scan
+    assert capsys.readouterr().err == ""
+    seen = []
+    scan(pf.SelfAffine, {**params, "hurst": [0.5, 0.6, 0.7]}, [1e6], e_star=1e9,
+         progress=lambda done, total: seen.append((done, total)))
+    assert seen == [(1, 3), (2, 3), (3, 3)]
+
+
+def test_keyboard_interrupt_local_leaves_no_threads():
+    params = {"hurst": np.linspace(0.5, 0.9, 8), "h_rms": 1e-6, "q0": 1e4, "q1": 1e8}
+
+    def interrupt(done, total):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        scan(pf.SelfAffine, params, P_PLAIN[1:], e_star=1e9, method="cn", rtol=1e-3,
+             workers=2, progress=interrupt)
+    assert not [t for t in threading.enumerate() if t.name.startswith("persson-scan")]
+
+
+# ---------------------------------------------------------------------------------------------
+# distributed
+# ---------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def client():
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                       dashboard_address=":0")
+    cl = distributed.Client(cluster)
+    yield cl
+    cl.close()
+    cluster.close()
+
+
+def _scan_tasks(cl, wait_s=10.0):
+    """Keys of scan tasks still on the scheduler, after up to ``wait_s`` for releases."""
+    deadline = time.monotonic() + wait_s
+    while True:
+        keys = cl.run_on_scheduler(lambda dask_scheduler: [
+            str(k) for k in dask_scheduler.tasks if "persson-scan" in str(k)])
+        if not keys or time.monotonic() > deadline:
+            return keys
+        time.sleep(0.05)
+
+
+def test_distributed_equals_local_bitwise(client, adhesive_scan):
+    kw = dict(e_star=E_STAR, rtol=1e-3, profiles=True, pull_off=True, progress=False)
+    params = {"temperature": [350.0, 370.0], "work_of_adhesion": [0.0, 0.06], **SEED_KW}
+    ds = scan(pf.CapillaryWaves, params, P_ADH, client=client, chunks=1, **kw)
+    assert ds.attrs["execution"] == "distributed, 4 tasks of <= 1 scenes"
+    _assert_datasets_bitwise_equal(ds, adhesive_scan)
+    plain = scan(pf.SelfAffine, SA_PARAMS, P_PLAIN[1:], e_star=1e9, method="cn", rtol=1e-4,
+                 progress=False)
+    dist = scan(pf.SelfAffine, SA_PARAMS, P_PLAIN[1:], e_star=1e9, method="cn", rtol=1e-4,
+                progress=False, client=client, chunks=4)      # chunks of 4 and 2 scenes
+    assert dist.attrs["execution"] == "distributed, 2 tasks of <= 4 scenes"
+    _assert_datasets_bitwise_equal(dist, plain)
+    assert not _scan_tasks(client)
+
+
+def test_keyboard_interrupt_cancels_distributed_tasks(client):
+    workers_before = set(client.scheduler_info()["workers"])
+    params = {"temperature": np.linspace(340.0, 400.0, 8), "work_of_adhesion": 0.06, **SEED_KW}
+    calls = []
+
+    def interrupt(done, total):
+        calls.append(done)
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        scan(pf.CapillaryWaves, params, P_ADH, e_star=E_STAR, rtol=1e-3, client=client,
+             chunks=1, progress=interrupt)
+    assert calls == [1]
+    assert not _scan_tasks(client)                          # nothing left on the scheduler
+    assert not [k for k in client.futures if "persson-scan" in str(k)]
+    assert set(client.scheduler_info()["workers"]) == workers_before
+    assert client.status == "running"                       # the user's client stays theirs
+
+
+@pytest.mark.slow
+def test_own_local_cluster_is_closed_after_interrupt(monkeypatch):
+    created = []
+
+    class RecordingCluster(distributed.LocalCluster):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            created.append(self)
+
+    monkeypatch.setattr(distributed, "LocalCluster", RecordingCluster)
+    params = {"hurst": [0.6, 0.7, 0.8], "h_rms": 1e-6, "q0": 1e4, "q1": 1e8}
+    local = scan(pf.SelfAffine, params, P_PLAIN[1:], e_star=1e9, method="cn", progress=False)
+    ds = scan(pf.SelfAffine, params, P_PLAIN[1:], e_star=1e9, method="cn", client="local",
+              progress=False)
+    _assert_datasets_bitwise_equal(ds, local)
+
+    def interrupt(done, total):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        scan(pf.SelfAffine, params, P_PLAIN[1:], e_star=1e9, method="cn", client="local",
+             chunks=1, progress=interrupt)
+    assert len(created) == 2
+    assert all(str(c.status.name) == "closed" for c in created)
