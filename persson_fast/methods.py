@@ -39,6 +39,14 @@ METHODS = {
         "family": "grid", "variant": 2, "order": 1, "adhesion": True, "jumps": True,
         "nonlinear": True,
     },
+    "fixed-grid": {
+        "description": (
+            "Crank-Nicolson on a grid fixed to the stress axis (similarity-stretched), the "
+            "wall off-grid with a second-order Shortley-Weller Dirichlet closure"
+        ),
+        "family": "fixed-grid", "order": 2, "adhesion": False, "jumps": False,
+        "nonlinear": True,
+    },
     "auto": {
         "description": "the cheapest method that meets rtol for the scene (see AUTO_POLICY)",
         "family": None, "order": None, "adhesion": True, "jumps": True, "nonlinear": True,
