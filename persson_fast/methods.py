@@ -47,6 +47,15 @@ METHODS = {
         "family": "fixed-grid", "order": 2, "adhesion": False, "jumps": False,
         "nonlinear": True,
     },
+    "bnr": {
+        "description": (
+            "the Volterra integral equation of the detachment rate (Buonocore, Nobile & "
+            "Ricciardi 1987), trapezoid rule on a geometric time grid, two Richardson steps; "
+            "no stress grid"
+        ),
+        "family": "integral", "order": 4, "adhesion": False, "jumps": False,
+        "nonlinear": True,
+    },
     "auto": {
         "description": "the cheapest method that meets rtol for the scene (see AUTO_POLICY)",
         "family": None, "order": None, "adhesion": True, "jumps": True, "nonlinear": True,

@@ -18,7 +18,7 @@ PRESSURES = np.array([0.3, 1.0, 3.0])
 WALLS = {"images": (0.0, 0.0), "receding": (0.5, 0.05), "approaching": (2.0, -0.002)}
 #: levels whose error ratios measure the order (the asymptotic range of each method)
 LADDER = {"cn": (1, 2, 3, 4), "cn-plain": (2, 3, 4, 5), "implicit-euler": (3, 4, 5, 6),
-          "fixed-grid": (1, 2, 3, 4)}
+          "fixed-grid": (1, 2, 3, 4), "bnr": (0, 1, 2, 3)}
 #: |measured - theoretical| allowed: the pre-asymptotic drift over the ladder above
 ORDER_SLACK = 0.35
 
