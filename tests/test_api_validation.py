@@ -441,3 +441,22 @@ def test_messages_show_plain_numbers(case):
     call, expected = _PLAIN_LEAKS[case]
     msg = _message(call)
     assert expected in msg and "np." not in msg, msg
+
+
+def test_diffusion_level_range():
+    G = np.array([0.0, 1.0])
+    for bad in (-1, 11, 2.5):
+        with raises(r"^level must be an integer in \[0, 10\]", lit(repr(bad))):
+            pf.solve_diffusion(G, 1.0, level=bad)
+
+
+def test_diffusion_level_needs_a_compiled_method():
+    with raises(r"^level applies to compiled methods only", lit("'analytic'")):
+        pf.solve_diffusion(np.array([0.0, 1.0]), 1.0, method="analytic", level=1)
+
+
+def test_seed_e_star_poisson_range():
+    for bad in (-0.1, 0.6, float("nan")):
+        with raises(r"^poisson must lie in \[0, 0.5\]", "poisson = "):
+            pf.seed_e_star(bad)
+    assert pf.seed_e_star(0.0) == pf.SEED_YOUNG_MODULUS
