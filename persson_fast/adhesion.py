@@ -8,8 +8,11 @@ Seed Eqs. 8-9:
 
 (Persson, PRL 89, 245502 (2002); Eur. Phys. J. E 8, 385 (2002)). S = 1, or the later
 correction S = gamma_S + (1 - gamma_S) P^2 (Persson 2008). Where gamma_eff <= 0, sigma_a = 0.
-The fixed point runs entirely in compiled code (:mod:`persson_fast._kernels.adhesion`), one
-pressure per ``prange`` iteration.
+The fixed point of :func:`solve_adhesive_contact` runs entirely in compiled code
+(:mod:`persson_fast._kernels.adhesion`), one pressure per ``prange`` iteration.
+:func:`pull_off` follows the contact branch of one scene, parametrised by
+y0 = sigma0 + sigma_a(1), with a fixed-point loop in Python around the compiled diffusion
+solve (one scene, a few dozen branch points: the loop is not the cost).
 """
 from __future__ import annotations
 
@@ -40,21 +43,37 @@ NEAR_ONE_MIN = 1e-6
 NEAR_ONE_FRACTION = 0.5
 
 
-def adhesion_zeta(surface, rtol: float = 1e-6, per_decade: int | None = None) -> np.ndarray:
+def adhesion_zeta(surface, rtol: float = 1e-6, per_decade: int | None = None,
+                  near_one_min: float | None = None) -> np.ndarray:
     """Default magnification grid of the adhesive problem. [-]
 
-    Log-spaced from 1 to zeta1 with ``per_decade`` points per decade (default
-    46 (1e-6/rtol)^(1/3), at least 4), plus the spectrum's breakpoints and points at
-    zeta - 1 = 1e-4 ... 0.3 (the grid must be fine near 1).
+    Parameters
+    ----------
+    surface : Surface
+        The rough surface (its q0, q1 and breakpoints are used).
+    rtol : float
+        Target relative accuracy; sets the default ``per_decade``. [-]
+    per_decade : int, optional
+        Points per decade of zeta (default 46 (1e-6/rtol)^(1/3), at least 4). [-]
+    near_one_min : float, optional
+        Smallest zeta - 1 of the points near zeta = 1 (default ``NEAR_ONE_MIN``). [-]
+
+    Returns
+    -------
+    zeta : ndarray
+        Log-spaced from 1 to zeta1 with ``per_decade`` points per decade, plus the
+        spectrum's breakpoints and points spaced in ln(zeta - 1) from ``near_one_min`` to 1
+        with ``NEAR_ONE_FRACTION`` of that density (the grid must be fine near 1). [-]
     """
     if per_decade is None:
         per_decade = max(4, int(np.ceil(ZETA_PER_DECADE_ADHESION * (1e-6 / rtol) ** (1 / 3))))
+    near_min = NEAR_ONE_MIN if near_one_min is None else float(near_one_min)
     zeta1 = surface.q1 / surface.q0
     n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
     z = np.geomspace(1.0, zeta1, n)
     bp = np.asarray(surface.breakpoints(), dtype=float) / surface.q0
-    n_near = max(2, int(np.ceil(-np.log10(NEAR_ONE_MIN) * per_decade * NEAR_ONE_FRACTION)))
-    near = 1.0 + np.geomspace(NEAR_ONE_MIN, 1.0, n_near)[:-1]
+    n_near = max(2, int(np.ceil(-np.log10(near_min) * per_decade * NEAR_ONE_FRACTION)))
+    near = 1.0 + np.geomspace(near_min, 1.0, n_near)[:-1]
     z = np.unique(np.concatenate([z, bp, near[near < zeta1]]))
     z = z[(z >= 1.0) & (z <= zeta1)]
     z[0], z[-1] = 1.0, zeta1
@@ -221,79 +240,683 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     )
 
 
-def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
-             detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None,
-             full_output=False):
-    """Pull-off stress of a nominally flat contact: contact exists for p_nom > -sigma_c. [Pa]
+#: --- pull-off (see :func:`pull_off`) ---------------------------------------------------
+#: ratio of successive y0 = sigma0 + sigma_a(1) on the descent along the contact branch
+PULL_OFF_STEP = 2.0
+#: the descent stops once its tail estimate is below this fraction of rtol * sigma_c
+PULL_OFF_TAIL = 0.25
+#: diffusion tolerance of the branch points, relative to rtol, and its floor (tighter
+#: tolerances run into the diffusion kernel's work cap at small y0)
+PULL_OFF_INNER = 0.2
+PULL_OFF_INNER_MIN = 1e-7
+#: fixed-point tolerance of a branch point, relative to rtol: max_i |F_i(x) - x_i| / c_i,
+#: c_i = beta (dgamma E* q_i)^(1/2) the full-contact scale of sigma_a at node i
+PULL_OFF_RESIDUAL = 0.02
+#: a step may move the wall at a node by at most this fraction of its distance from the
+#: start of the distribution, y0 + sigma_a(zeta_i) - sigma_a(1) (the scale on which the
+#: detachment near zeta = 1 is nonlinear)
+PULL_OFF_TRUST = 0.5
+#: relaxation factor and trust fraction of the retry after a failed branch point
+PULL_OFF_RETRY = (0.3, 0.2)
+#: iteration cap of one branch point, and iterations without halving the best residual
+#: after which it gives up
+PULL_OFF_MAX_ITER = 300
+PULL_OFF_STALL = 30
+#: a residual this many times the best so far restarts the iteration from the best iterate
+PULL_OFF_BLOWUP = 30.0
+#: cap on the descent's stages and on the parabolic steps that locate an interior minimum
+PULL_OFF_MAX_STAGES = 80
+PULL_OFF_MAX_FOLD_STEPS = 8
+#: nested zeta grids: at least 3 (two Richardson values to compare), at most this many
+PULL_OFF_MAX_GRIDS = 5
+#: the inner-solve error is measured by re-solving the end point with a tolerance this
+#: factor tighter (looser where that would pass PULL_OFF_INNER_MIN); it is never taken below
+#: PULL_OFF_INNER_FLOOR * sigma_c, the scatter of the end of the seed scene's branch as the
+#: diffusion tolerance varies between 1e-6 and 1.25e-7 (2.4 Pa of 7.8e5 Pa)
+PULL_OFF_INNER_CHECK = 4.0
+PULL_OFF_INNER_FLOOR = 3e-6
+#: resolution of the optional bracket of where solve_contact stops finding contact
+PULL_OFF_BRACKET_RTOL = 1e-4
+#: early stages run at this fraction of their relative change of sigma0 (at most 1e-3)
+PULL_OFF_LOOSE = 0.01
+#: the near-one points of the pull-off grids reach down to where sqrt(G) is this fraction
+#: of the full-contact sigma_a(1) (never below zeta - 1 = PULL_OFF_NEAR_FLOOR): the layer
+#: near the end of the branch sits at sqrt(G) ~ y0 / 20 and y0 ~ 1e-4 sigma_a(1) there
+PULL_OFF_NEAR_STRESS = 1e-6
+PULL_OFF_NEAR_FLOOR = 1e-14
+#: the finer grids are solved at y0 = y_best * PULL_OFF_STEP**PULL_OFF_GRID_STAGES
+PULL_OFF_GRID_STAGES = 2
 
-    Parameters
-    ----------
-    surface : Surface
-    e_star : float -- effective modulus E* > 0. [Pa]
-    work_of_adhesion : float -- Delta gamma >= 0. [J/m^2]
-    energy_correction, detachment_prefactor : as in :func:`solve_contact`.
-    rtol : float -- relative accuracy of sigma_c (and of the inner solves). [-]
 
-    full_output : bool -- also return a dict with the final bracket [Pa], the number of
-        solves, and how many of them ended unconverged.
+class _Branch:
+    """The adhesive fixed point on one zeta grid, parametrised by y0 = sigma0 + sigma_a(1).
 
-    Returns
-    -------
-    sigma_c : float -- >= 0; 0 when the surfaces are not macroscopically sticky. [Pa]
-    info : dict -- only with ``full_output``.
-
-    Notes
-    -----
-    The pull-off stress is the largest tension -p_nom for which the fixed point of Eqs. 8-9
-    still has contact. It is bracketed between 0 and the full-contact bound
-    beta (Delta gamma E* q0)^(1/2) and found by bisection to ``rtol``, each solve starting
-    from the contact solution at the nearest tension known to have contact (continuation
-    along the contact branch). Close to the end of the branch the fixed point can stop
-    converging (the iteration is drawn to the separated state); such a tension counts as
-    "no contact found", and ``info["unconverged"]`` says how often that decided a step.
-    Raises ``RuntimeError`` if the solve at p_nom = 0 fails or a solve is flagged for another
-    reason (resolution cap, far-field leak).
+    Along the contact branch the nominal pressure sigma0(y0) turns (or flattens) at the
+    pull-off, where the fixed point at fixed sigma0 is singular; at fixed y0 it is regular.
+    All stresses inside are scaled by the scene scale of :func:`_scene_arrays`.
     """
-    from .api import _check_rtol, _check_scene_args, _check_zeta
 
-    rtol = _check_rtol(rtol)
-    e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
-                                    energy_correction)
-    if dg == 0.0:
-        return (0.0, {"solves": 0, "unconverged": 0, "bracket": (0.0, 0.0)}) if full_output else 0.0
-    z = adhesion_zeta(surface, rtol) if zeta is None else _check_zeta(zeta, surface)
+    def __init__(self, surface, zeta, e_star, work_of_adhesion, beta, gamma_s, variant, n_damp):
+        from ._kernels.sweep import sweep_serial
+
+        self.zeta = np.asarray(zeta, dtype=float)
+        G, c, wa, wb, scale, _ = _scene_arrays(surface, self.zeta, e_star, work_of_adhesion, beta)
+        self.G, self.c, self.wa, self.wb, self.scale = G, c, wa, wb, scale
+        self.gamma_s = gamma_s
+        self.variant = int(variant)
+        self.n_damp = int(n_damp)
+        self._kernel = sweep_serial
+        n = self.zeta.size
+        self._out = [np.zeros((1, n)) for _ in range(5)]
+        self._status = np.zeros(1, dtype=np.int64)
+        self._counts = np.zeros((1, 3), dtype=np.int64)
+        self.solves = 0
+        self.area = np.ones(n)
+        self.area_error = np.zeros(n)
+
+    def update(self, area):
+        """Eqs. 8-9: the detachment stress (scaled) of an area profile."""
+        if self.gamma_s >= 0.0:
+            f = area * (self.gamma_s + (1.0 - self.gamma_s) * area * area)
+        else:
+            f = area
+        terms = self.wa * f[:-1] + self.wb * f[1:]
+        u = np.zeros(area.size)
+        u[:-1] = np.cumsum(terms[::-1])[::-1]
+        g = np.zeros(area.size)
+        pos = area > 0.0
+        g[pos] = (area[-1] - u[pos]) / area[pos]
+        return self.c * np.sqrt(np.maximum(g, 0.0))
+
+    def evaluate(self, x, sigma0, rtol):
+        """F(x): diffuse against the wall x at nominal stress sigma0 (scaled), then Eqs. 8-9."""
+        area, load, det_a, det_l, err = self._out
+        self._kernel(self.variant, self.G, x[None, :], np.array([sigma0]), float(rtol), -1,
+                     self.n_damp, area, load, det_a, det_l, err, self._status, self._counts)
+        self.solves += 1
+        self.area = area[0].copy()
+        self.area_error = err[0].copy()
+        return self.update(self.area), int(self._status[0])
+
+    def point(self, y0, x_start, rtol, *, m_hist, omega, trust, max_iter):
+        """Branch point at y0 [Pa]: Anderson-accelerated fixed point with a trust region.
+
+        Returns a dict (y0, sigma0 [Pa], x (scaled sigma_a), area, status, iterations,
+        residual, converged).
+        """
+        from ._kernels.status import BAD_INPUT, NONFINITE
+
+        y = y0 / self.scale
+        w = 1.0 / self.c
+        x = np.maximum(np.array(x_start, dtype=float), 0.0)
+        tol = max(PULL_OFF_RESIDUAL * rtol, 1e-13)
+        inner = _inner_rtol(rtol)
+        res = np.inf
+        best = best_mark = np.inf
+        x_best = f_best = None
+        it_mark = 0
+        final = False
+        lost = 0
+        dX, dF = [], []
+        x_prev = f_prev = None
+        status = 0
+        it = 0
+        out = None
+        while it < max_iter:
+            it += 1
+            r_it = min(1e-3, 0.1 * res)
+            if r_it < inner or final:
+                r_it = inner
+            fx, status = self.evaluate(x, y - x[0], r_it)
+            if status in (NONFINITE, BAD_INPUT):
+                break
+            f = fx - x
+            res = float(np.max(np.abs(f) * w))
+            if not np.isfinite(res):
+                break
+            if res < best:
+                if res < 0.5 * best_mark:
+                    best_mark, it_mark = res, it
+                best, x_best, f_best = res, x, f
+            if it - it_mark > PULL_OFF_STALL:
+                break
+            if res > PULL_OFF_BLOWUP * best and not final:
+                # the step left the region where the map is near-linear: back to the best
+                # iterate, forget the history, relax more
+                omega = max(0.5 * omega, 0.1)
+                trust = max(0.5 * trust, 0.05)
+                dX, dF = [], []
+                x_prev = None
+                x = np.maximum(x_best + omega * f_best, 0.0)
+                continue
+            # the branch is lost when the contact vanishes or sigma_a(1) does
+            lost = lost + 1 if (self.area[-1] <= 0.0 or fx[0] <= 0.0) else 0
+            if lost >= 3:
+                break
+            if res <= tol:
+                if r_it == inner:
+                    out = x
+                    break
+                final = True        # converged on a loose inner solve: confirm
+            if m_hist > 0 and x_prev is not None:
+                dX.append(x - x_prev)
+                dF.append(f - f_prev)
+                if len(dX) > m_hist:
+                    dX.pop(0)
+                    dF.pop(0)
+            x_prev, f_prev = x, f
+            if dX:
+                DX = np.array(dX).T
+                DF = np.array(dF).T
+                A = DF * w[:, None]
+                M = A.T @ A
+                M += np.eye(len(dX)) * (1e-10 * np.trace(M) + 1e-300)
+                gamma = np.linalg.solve(M, A.T @ (f * w))
+                step = omega * f - (DX + omega * DF) @ gamma
+            else:
+                step = omega * f
+            reach = trust * np.maximum(y + x - x[0], y)
+            big = float(np.max(np.abs(step) / reach))
+            if big > 1.0:
+                step = step / big
+            x = np.maximum(x + step, 0.0)
+        converged = out is not None
+        return {"y0": float(y0), "sigma0": float((y - x[0]) * self.scale), "x": x.copy(),
+                "area": self.area.copy(), "area_error": self.area_error.copy(),
+                "status": status, "iterations": it, "residual": res, "converged": converged}
+
+    def follow(self, y0, starts, rtol, controls):
+        """Branch point at y0 from the first start that converges (normal, then cautious)."""
+        m_hist, omega = controls["m_hist"], controls["omega"]
+        tries = [(m_hist, omega, PULL_OFF_TRUST), (min(m_hist, 3), *PULL_OFF_RETRY)]
+        iterations = 0
+        for x_start in starts:
+            for m, om, tr in tries:
+                p = self.point(y0, x_start, rtol, m_hist=m, omega=om, trust=tr,
+                               max_iter=controls["max_iter"])
+                iterations += p["iterations"]
+                if p["converged"]:
+                    p["iterations"] = iterations
+                    return p
+        p["iterations"] = iterations
+        return p
+
+
+def _near_one_min(surface, e_star, work_of_adhesion, beta):
+    """Smallest zeta - 1 of the near-one points of the pull-off grids. [-]
+
+    Close to pull-off an absorbing layer forms where sqrt(G) is a small fraction of
+    y0 = sigma0 + sigma_a(1), and y0 at the end of the branch is a small fraction of
+    sigma_a(1); the near-one points must reach down to where sqrt(G) is
+    ``PULL_OFF_NEAR_STRESS`` times the full-contact sigma_a(1) (at most ``NEAR_ONE_MIN``).
+    """
+    target = PULL_OFF_NEAR_STRESS * beta * np.sqrt(work_of_adhesion * e_star * surface.q0)
+    lo, hi = np.log(PULL_OFF_NEAR_FLOOR), np.log(NEAR_ONE_MIN)
+
+    def root_g(log_d):
+        q = surface.q0 * (1.0 + np.exp(log_d))
+        return float(np.sqrt(max(float(surface.diffusion_time(q, e_star)), 0.0)))
+
+    if root_g(hi) <= target:
+        return NEAR_ONE_MIN
+    if root_g(lo) >= target:
+        return PULL_OFF_NEAR_FLOOR
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if root_g(mid) > target:
+            hi = mid
+        else:
+            lo = mid
+    return float(np.exp(lo))
+
+
+def _inner_rtol(rtol):
+    """Tolerance of the diffusion solves inside a branch point at target ``rtol``."""
+    return max(PULL_OFF_INNER * rtol, PULL_OFF_INNER_MIN)
+
+
+def _tail_estimate(d_last, d_prev):
+    """Remaining change of sigma0 as y0 -> 0, from the last two stage differences [Pa].
+
+    The differences shrink at least geometrically with the observed ratio, and the model
+    is not trusted beyond quadratic convergence in y0 (ratio 1/PULL_OFF_STEP^2).
+    """
+    if d_last == 0.0:
+        return 0.0
+    if d_prev == 0.0 or not np.isfinite(d_prev):
+        return np.inf
+    q = max(abs(d_last / d_prev), PULL_OFF_STEP ** -2)
+    return np.inf if q >= 1.0 else abs(d_last) * q / (1.0 - q)
+
+
+def _predict(samples, y0):
+    """Start profile at y0: linear extrapolation in y0 from the last two branch points."""
+    if len(samples) < 2:
+        return samples[-1]["x"]
+    a, b = samples[-2], samples[-1]
+    t = (y0 - b["y0"]) / (b["y0"] - a["y0"])
+    return np.maximum(b["x"] + t * (b["x"] - a["x"]), 0.0)
+
+
+def _stage_rtol(samples, rtol):
+    """Tolerance of the next stage: loose while sigma0 still changes a lot per stage."""
+    ok = [s for s in samples if s["converged"]]
+    if len(ok) < 2:
+        return max(rtol, min(1e-3, 1e3 * rtol))
+    d = abs(ok[-1]["sigma0"] - ok[-2]["sigma0"]) / max(abs(ok[-1]["sigma0"]), 1e-300)
+    return max(rtol, min(1e-3, PULL_OFF_LOOSE * d))
+
+
+def _descend(branch, x_start, y_start, rtol, controls):
+    """Follow the contact branch from y_start down in y0 to where sigma0(y0) is least.
+
+    Early stages, where sigma0 still changes by much more than the tolerance per stage, run
+    at a looser tolerance; the points the result depends on are refreshed at ``rtol``.
+
+    Returns (samples, y_best, tail, fold, lost): the branch points in the order computed,
+    the y0 of the least sigma0 (an interior minimum located by parabolic steps in ln y0, or
+    the last point where sigma0 has stopped falling), the estimated change of sigma0 still
+    to come [Pa] (beyond the last point as y0 -> 0, or what the last parabola predicted
+    below the best point), whether an interior minimum was found, and whether the branch
+    was lost (a branch point failed) before either.
+    """
+    samples = []
+    p = branch.follow(y_start, [x_start], _stage_rtol(samples, rtol), controls)
+    p["rtol"] = _stage_rtol(samples, rtol)
+    samples.append(p)
+    if not p["converged"]:
+        return samples, y_start, np.inf, False, True
+    y = y_start
+    lost = False
+    for _ in range(PULL_OFF_MAX_STAGES):
+        rt = _stage_rtol(samples, rtol)
+        y_new = y / PULL_OFF_STEP
+        p = branch.follow(y_new, [_predict(samples, y_new), samples[-1]["x"]], rt, controls)
+        if not p["converged"]:
+            y_new = y / np.sqrt(PULL_OFF_STEP)          # one half step before giving up
+            p = branch.follow(y_new, [samples[-1]["x"]], rt, controls)
+        p["rtol"] = rt
+        samples.append(p)
+        if not p["converged"]:
+            lost = True
+            break
+        y = y_new
+        if rt > rtol:
+            continue
+        ok = [s for s in samples if s["converged"]]
+        s_min = min(s["sigma0"] for s in ok)
+        tol_s = PULL_OFF_TAIL * rtol * abs(s_min)
+        if p["sigma0"] > s_min + tol_s:
+            _refresh(branch, samples, rtol, controls, 3)
+            y_best, remaining = _locate_minimum(branch, samples, rtol, controls, tol_s)
+            return samples, y_best, remaining, True, False
+        if len(ok) >= 3:
+            _refresh(branch, samples, rtol, controls, 3)
+            ok = [s for s in samples if s["converged"]]
+            tail = _tail_estimate(ok[-1]["sigma0"] - ok[-2]["sigma0"],
+                                  ok[-2]["sigma0"] - ok[-3]["sigma0"])
+            if tail <= tol_s:
+                return samples, min(ok, key=lambda s: s["sigma0"])["y0"], tail, False, False
+    _refresh(branch, samples, rtol, controls, 3)
+    ok = [s for s in samples if s["converged"]]
+    tail = np.inf
+    if len(ok) >= 3:
+        tail = _tail_estimate(ok[-1]["sigma0"] - ok[-2]["sigma0"],
+                              ok[-2]["sigma0"] - ok[-3]["sigma0"])
+    return samples, min(ok, key=lambda s: s["sigma0"])["y0"], tail, False, lost
+
+
+def _refresh(branch, samples, rtol, controls, count):
+    """Re-solve at ``rtol`` the last ``count`` converged points that ran looser."""
+    idx = [i for i, s in enumerate(samples) if s["converged"]][-count:]
+    for i in idx:
+        s = samples[i]
+        if s.get("rtol", rtol) > rtol:
+            p = branch.follow(s["y0"], [s["x"]], rtol, controls)
+            p["rtol"] = rtol
+            if p["converged"]:
+                samples[i] = p
+
+
+def _locate_minimum(branch, samples, rtol, controls, tol_s):
+    """Parabolic steps in ln y0 to the interior minimum of sigma0(y0).
+
+    Returns (y0 of the least sigma0 found, the improvement the last parabola still
+    predicted beyond it [Pa]).
+    """
+    remaining = tol_s
+    for _ in range(PULL_OFF_MAX_FOLD_STEPS):
+        ok = sorted((s for s in samples if s["converged"]), key=lambda s: s["y0"])
+        k = min(range(len(ok)), key=lambda i: ok[i]["sigma0"])
+        if k == 0 or k == len(ok) - 1:
+            break
+        u = np.log([ok[k - 1]["y0"], ok[k]["y0"], ok[k + 1]["y0"]])
+        s = np.array([ok[k - 1]["sigma0"], ok[k]["sigma0"], ok[k + 1]["sigma0"]])
+        d1 = (s[1] - s[0]) / (u[1] - u[0])
+        d2 = (s[2] - s[1]) / (u[2] - u[1])
+        curv = (d2 - d1) / (u[2] - u[0])
+        if curv <= 0.0:
+            break
+        u_v = 0.5 * (u[0] + u[1]) - d1 / (2.0 * curv)
+        s_v = s[0] + d1 * (u_v - u[0]) + curv * (u_v - u[0]) * (u_v - u[1])
+        remaining = max(s[1] - s_v, 0.0)
+        if remaining <= 0.1 * tol_s:
+            break
+        # keep the new point away from the old ones (golden-section safeguard)
+        lo, hi = u[0], u[2]
+        u_v = min(max(u_v, lo + 0.1 * (u[1] - lo)), hi - 0.1 * (hi - u[1]))
+        if abs(u_v - u[1]) < 0.05 * (hi - lo):
+            u_v = u[1] + 0.382 * ((hi if hi - u[1] > u[1] - lo else lo) - u[1])
+        nearest = min(ok, key=lambda p: abs(np.log(p["y0"]) - u_v))
+        p = branch.follow(float(np.exp(u_v)), [nearest["x"]], rtol, controls)
+        p["rtol"] = rtol
+        samples.append(p)
+        if not p["converged"]:
+            break
+    ok = [s for s in samples if s["converged"]]
+    return min(ok, key=lambda s: s["sigma0"])["y0"], remaining
+
+
+def _replay(branch, targets, x_dim_start, rtol, controls):
+    """Branch points of a finer grid at the given y0 (descending), from a coarser profile."""
+    x = x_dim_start / branch.scale
+    points = []
+    for y0 in targets:
+        p = branch.follow(y0, [x] if not points else [points[-1]["x"], x], rtol, controls)
+        points.append(p)
+        if p["converged"]:
+            x = p["x"]
+    return points
+
+
+def _interp_profile(zeta_to, zeta_from, x_dim):
+    """A detachment-stress profile [Pa] carried to another grid (linear in ln zeta)."""
+    return np.interp(np.log(zeta_to), np.log(zeta_from), x_dim)
+
+
+def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, upper):
+    """Where :func:`solve_adhesive_contact` on the grid ``z`` stops finding contact.
+
+    Bisection in the tension between 0 and ``upper`` [Pa], each solve continuing from the
+    contact state at the nearest tension with contact. Returns ((lo, hi), solves): contact
+    found at tension lo, none at hi [Pa].
+    """
+    solves = 0
 
     def contact(sigma0, start):
+        nonlocal solves
         r = solve_adhesive_contact(surface, np.array([sigma0]), z, e_star=e, work_of_adhesion=dg,
                                    energy_correction=energy_correction,
                                    detachment_prefactor=beta, rtol=rtol, parallel=False,
                                    controls=controls, zeta_given=True, start=start)
-        info["solves"] += 1
-        if r.status[0] == NOT_CONVERGED and sigma0 < 0.0:
-            info["unconverged"] += 1      # stalled at the edge of the branch
-            return False, r
+        solves += 1
         if r.status[0] not in (0, WALL_JUMP):
-            raise RuntimeError(f"pull_off: the contact problem failed at p_nom = {sigma0!r} Pa "
-                               f"({r.message}); try a smaller rtol or a finer zeta grid")
+            return False, r
         return r.area[0] > 0, r
 
-    info = {"solves": 0, "unconverged": 0}
-
     has, r_hi = contact(0.0, None)
-    if not has:
-        info["bracket"] = (0.0, 0.0)
-        return (0.0, info) if full_output else 0.0
-    hi = 0.0                                     # contact
-    lo = -beta * np.sqrt(dg * e * surface.q0)    # surely separated (sigma_a(1) <= this)
-    while hi - lo > rtol * max(abs(lo), abs(hi)):
+    hi, lo = 0.0, -upper
+    tol = max(rtol, PULL_OFF_BRACKET_RTOL)
+    while hi - lo > tol * max(abs(lo), abs(hi)):
         mid = 0.5 * (lo + hi)
-        # continuation: start from the contact solution at the nearest pressure with contact,
-        # so that the fixed point follows the contact branch as far as it exists
         has, r = contact(mid, r_hi.sigma_a)
         if has:
             hi, r_hi = mid, r
         else:
             lo = mid
-    info["bracket"] = (float(-hi), float(-lo))
-    sigma_c = float(-0.5 * (lo + hi))
-    return (sigma_c, info) if full_output else sigma_c
+    return (float(-hi), float(-lo)), solves
+
+
+def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
+             detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None,
+             full_output=False, bracket=True):
+    """Pull-off stress of a nominally flat contact: contact exists for p_nom > -sigma_c. [Pa]
+
+    Parameters
+    ----------
+    surface : Surface
+        The rough surface.
+    e_star : float
+        Effective modulus E* > 0. [Pa]
+    work_of_adhesion : float
+        Delta gamma >= 0. [J/m^2]
+    energy_correction, detachment_prefactor
+        As in :func:`persson_fast.solve_contact`.
+    rtol : float
+        Relative accuracy of sigma_c. [-]
+    zeta : array_like, optional
+        The coarsest of the nested magnification grids; the others are its refinements
+        (:func:`refine_zeta`). Default: :func:`adhesion_zeta` at ``rtol`` with its points
+        near zeta = 1 extended down to :func:`_near_one_min`. [-]
+    controls : dict, optional
+        Fixed-point controls (see :data:`ADHESION_DEFAULTS`); ``max_iter`` defaults to
+        ``PULL_OFF_MAX_ITER`` here.
+    full_output : bool
+        Also return a dict of diagnostics (see Returns).
+    bracket : bool
+        With ``full_output``, also bisect for where :func:`persson_fast.solve_contact` on the
+        default grid stops finding contact (``info["bracket"]``; costs about 15 solves).
+
+    Returns
+    -------
+    sigma_c : float
+        Pull-off stress, >= 0; 0 when the surfaces are not macroscopically sticky. [Pa]
+    info : dict
+        Only with ``full_output``:
+
+        - ``error_estimate`` [Pa]: estimated error of sigma_c, the sum of ``error_parts``:
+          ``zeta_grid`` (difference of the last two Richardson values at ``y0_grids``),
+          ``end_zeta_grid`` (zeta-grid error of the branch's change from ``y0_grids`` to its
+          end), ``tail`` (change left beyond the last point as y0 -> 0) and ``inner`` (the
+          diffusion solves: from re-solving the end point at another tolerance, at least
+          ``PULL_OFF_INNER_FLOOR * sigma_c``);
+        - ``converged``: ``error_estimate <= rtol * sigma_c`` and no branch point failed
+          (otherwise a ``RuntimeWarning`` is issued too);
+        - ``y0`` [Pa]: sigma0 + sigma_a(1) at the end of the branch; ``fold``: the end is an
+          interior minimum of sigma0(y0) (True) or the branch flattens as y0 -> 0 (False);
+        - ``y0_grids`` [Pa], ``grids``: the y0 where the nested grids are compared, and per
+          grid its size and -sigma0 there [Pa]; ``extrapolated``: the Richardson values [Pa];
+          ``end_correction``: the branch's change from ``y0_grids`` to the end on the two
+          coarsest grids [Pa];
+        - ``branch``: the descent on the coarsest grid, arrays ``y0``, ``sigma0`` [Pa] and
+          ``area`` (A(zeta1)/A0);
+        - ``solves``, ``iterations``, ``unconverged`` (branch points that failed), ``time`` [s];
+        - ``bracket`` (with ``bracket=True``): tensions (lo, hi) [Pa] between which
+          :func:`persson_fast.solve_contact` at this ``rtol`` (on the grid
+          ``adhesion_zeta(surface, rtol)`` or ``zeta``) stops finding contact: contact at lo,
+          none at hi, resolution max(rtol, 1e-4). It lies below sigma_c by the zeta-grid
+          error of a single unextrapolated grid and where its fixed point stops converging.
+
+    Raises
+    ------
+    RuntimeError
+        If the contact problem at p_nom = 0 fails, or a branch point used for sigma_c is
+        flagged by the diffusion kernel (resolution cap, far-field leak).
+
+    Warns
+    -----
+    RuntimeWarning
+        When the estimated error exceeds ``rtol * sigma_c`` or a branch point failed.
+
+    Notes
+    -----
+    On the contact branch of the fixed point of Eqs. 8-9 the nominal stress sigma0 is a
+    function of y0 = sigma0 + sigma_a(zeta = 1), the start's distance from the wall, and the
+    pull-off stress is -min sigma0 along the branch. Close to its end the branch flattens:
+    an absorbing layer just above zeta = 1 takes up every change of y0 (on the seed scene
+    sigma0 changes by 7 Pa as y0 falls from 1 kPa to 0), so the fixed point at fixed sigma0
+    is nearly singular over the whole flat stretch and stops converging well before its
+    end. At fixed y0 it stays regular, so the branch is followed in y0: from the state at
+    p_nom = 0, y0 falls by ``PULL_OFF_STEP`` per stage (Anderson-accelerated fixed points
+    with a trust region on the wall near zeta = 1, each starting from the extrapolated
+    previous ones; loose while sigma0 still changes much) until sigma0 rises again (an
+    interior minimum, located by parabolic steps in ln y0) or the estimated remaining change
+    is below ``PULL_OFF_TAIL * rtol * sigma_c``.
+
+    A single zeta grid leaves a large second-order error (1.6e-3 of sigma_c at 20 points
+    per decade on the seed scene, mostly from the bulk of the spectrum), so the branch point
+    at ``y0_grids`` (``PULL_OFF_GRID_STAGES`` stages above the end, where the fixed point is
+    robust) is computed on at least three nested grids and Richardson-extrapolated, and the
+    branch's change from there to the end is extrapolated from the two coarsest grids. The
+    grids reach down to where sqrt(G) is ``PULL_OFF_NEAR_STRESS`` of sigma_a(1), so that the
+    layer near zeta = 1 is resolved (see :func:`_near_one_min`).
+    """
+    from .api import _check_rtol, _check_scene_args, _check_zeta
+
+    t_start = time.perf_counter()
+    rtol = _check_rtol(rtol)
+    e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
+                                    energy_correction)
+    info = {"solves": 0, "iterations": 0, "unconverged": 0, "error_estimate": 0.0,
+            "error_parts": {}, "converged": True, "fold": False, "y0": 0.0, "grids": [],
+            "extrapolated": [], "branch": {}, "bracket": (0.0, 0.0), "time": 0.0}
+    if dg == 0.0:
+        return (0.0, info) if full_output else 0.0
+    if zeta is None:
+        z0 = adhesion_zeta(surface, rtol, near_one_min=_near_one_min(surface, e, dg, beta))
+    else:
+        z0 = _check_zeta(zeta, surface)
+    ctl = _controls(controls)
+    if not (controls and "max_iter" in controls):
+        ctl["max_iter"] = PULL_OFF_MAX_ITER
+    gamma_s = -1.0 if energy_correction is None else float(energy_correction)
+    variant = int(METHODS[choose_auto("adhesion")]["variant"])
+
+    def make(grid):
+        return _Branch(surface, grid, e, dg, beta, gamma_s, variant, ctl["n_damp"])
+
+    # the contact state at p_nom = 0 on the coarsest grid starts the descent
+    b0 = make(z0)
+    outs, status, iterations, _, _ = _run(b0.G, b0.c, b0.wa, b0.wb, gamma_s, np.array([0.0]),
+                                          _inner_rtol(rtol), False, ctl, None, variant)
+    info["solves"] += 1
+    info["iterations"] += int(iterations[0])
+    if status[0] not in (0, WALL_JUMP):
+        raise RuntimeError(f"pull_off: the contact problem failed at p_nom = 0 Pa "
+                           f"({summarize_status(status)[1]}); try a smaller rtol or a finer "
+                           f"zeta grid")
+    x_p0 = outs[1][0]
+    if outs[0][0, -1] <= 0.0 or x_p0[0] <= 0.0:
+        info["time"] = time.perf_counter() - t_start
+        return (0.0, info) if full_output else 0.0      # not sticky: no contact in tension
+
+    samples, y_best, tail, fold, lost = _descend(b0, x_p0, x_p0[0] * b0.scale, rtol, ctl)
+    ok = sorted((s for s in samples if s["converged"]), key=lambda s: -s["y0"])
+    if not ok:
+        raise RuntimeError("pull_off: the contact branch could not be followed from p_nom = 0")
+    best = min(ok, key=lambda s: s["sigma0"])
+    # the nested grids are compared at y_g, a few stages above the end, where the fixed
+    # point is robust; the change of sigma0 from y_g to the end (the part of the branch the
+    # thin layer above zeta = 1 shapes) comes from the two coarsest grids
+    y_above = best["y0"] * PULL_OFF_STEP ** PULL_OFF_GRID_STAGES * 0.99
+    above = [s for s in ok if s["y0"] >= y_above]
+    g_pt = above[-1] if above else ok[0]
+    if g_pt.get("rtol", rtol) > rtol:
+        g_pt = b0.follow(g_pt["y0"], [g_pt["x"]], rtol, ctl)
+    y_g = g_pt["y0"]
+    down = [s["y0"] for s in ok if best["y0"] <= s["y0"] < y_g]
+    if best["y0"] not in down:
+        down.append(best["y0"])
+    down = sorted(set(down), reverse=True)
+    ends = [g_pt["sigma0"]]
+    used = [g_pt, best]
+    branches = [b0]
+    t_coarse = best["sigma0"] - g_pt["sigma0"]
+    t_fine = None
+    prev_z, prev_x = z0, g_pt["x"] * b0.scale
+    err_grid = np.inf
+    while len(ends) < PULL_OFF_MAX_GRIDS:
+        grid = refine_zeta(prev_z)
+        b = make(grid)
+        branches.append(b)
+        p = b.follow(y_g, [_interp_profile(grid, prev_z, prev_x) / b.scale], rtol, ctl)
+        used.append(p)
+        if not p["converged"]:
+            lost = True
+            break
+        ends.append(p["sigma0"])
+        if len(ends) == 2:
+            pts = _replay(b, down, p["x"] * b.scale, rtol, ctl)
+            if pts and pts[-1]["converged"]:
+                used.append(pts[-1])
+                t_fine = pts[-1]["sigma0"] - p["sigma0"]
+        prev_z, prev_x = grid, p["x"] * b.scale
+        if len(ends) >= 3:
+            s = np.array(ends)
+            rich = (4.0 * s[1:] - s[:-1]) / 3.0
+            err_grid = abs(rich[-1] - rich[-2])
+            steps = np.diff(s)
+            ratio = steps[-2] / steps[-1] if steps[-1] != 0.0 else np.inf
+            if not 2.0 <= ratio <= 8.0:
+                # not in the asymptotic range: charge the last difference itself
+                err_grid = max(err_grid, abs(steps[-1]))
+            if err_grid <= 0.5 * rtol * abs(rich[-1]):
+                break
+    s = np.array(ends)
+    if s.size >= 2:
+        rich = (4.0 * s[1:] - s[:-1]) / 3.0
+        if s.size == 2:
+            err_grid = abs(s[1] - s[0])
+    else:
+        rich = s.copy()
+    if t_fine is not None:
+        t_end = (4.0 * t_fine - t_coarse) / 3.0
+        err_t = abs(t_fine - t_coarse) / 3.0
+    else:
+        t_end = t_coarse
+        err_t = 0.5 * abs(t_coarse)
+    sigma_c = max(-float(rich[-1] + t_end), 0.0)
+    # error of the inner (diffusion) solves: re-solve the coarsest grid's end point with a
+    # tighter tolerance (the inner error taken as linear in it), or, at the floor, a looser
+    # one (the whole difference charged)
+    tighter = _inner_rtol(rtol / PULL_OFF_INNER_CHECK) < _inner_rtol(rtol)
+    r_check = rtol / PULL_OFF_INNER_CHECK if tighter else rtol * PULL_OFF_INNER_CHECK
+    check = b0.point(best["y0"], best["x"], r_check, m_hist=ctl["m_hist"], omega=ctl["omega"],
+                     trust=PULL_OFF_TRUST, max_iter=ctl["max_iter"])
+    err_inner = abs(check["sigma0"] - best["sigma0"])
+    if tighter:
+        err_inner *= PULL_OFF_INNER_CHECK / (PULL_OFF_INNER_CHECK - 1.0)
+    if not check["converged"] or check["status"] not in (0, WALL_JUMP):
+        err_inner += rtol * sigma_c
+    err_inner = max(err_inner, PULL_OFF_INNER_FLOOR * sigma_c)
+    err_tail = float(tail)
+    for p in used:
+        if p["converged"] and p["status"] not in (0, WALL_JUMP):
+            raise RuntimeError(f"pull_off: a branch point at y0 = {p['y0']!r} Pa was flagged "
+                               f"({summarize_status(np.array([p['status']]))[1]}); try a "
+                               f"smaller rtol or a finer zeta grid")
+    error = err_grid + err_t + err_tail + err_inner
+    converged = bool(error <= rtol * sigma_c and not lost)
+    if not converged:
+        import warnings
+
+        warnings.warn(f"pull_off: estimated error {error:.3g} Pa of sigma_c = {sigma_c:.6g} Pa "
+                      f"exceeds rtol * sigma_c" + ("; a branch point failed" if lost else ""),
+                      RuntimeWarning, stacklevel=2)
+    if full_output:
+        info["solves"] += sum(b.solves for b in branches)
+        info["iterations"] += sum(p["iterations"] for p in samples + used) + check["iterations"]
+        info["unconverged"] = sum(not p["converged"] for p in samples) + sum(
+            not p["converged"] for p in used)
+        info["error_estimate"] = float(error)
+        info["error_parts"] = {"zeta_grid": float(err_grid), "end_zeta_grid": float(err_t),
+                               "tail": err_tail, "inner": float(err_inner)}
+        info["converged"] = converged
+        info["fold"] = bool(fold)
+        info["y0"] = float(best["y0"])
+        info["y0_grids"] = float(y_g)
+        info["end_correction"] = (float(-t_coarse), None if t_fine is None else float(-t_fine))
+        info["grids"] = [(int(b.zeta.size), float(-s_)) for b, s_ in zip(branches, ends)]
+        info["extrapolated"] = [float(-r) for r in rich]
+        info["branch"] = {"y0": np.array([p["y0"] for p in ok]),
+                          "sigma0": np.array([p["sigma0"] for p in ok]),
+                          "area": np.array([p["area"][-1] for p in ok])}
+        if bracket:
+            upper = max(sigma_c + error, float(-min(ends))) * (1.0 + 2.0 * rtol)
+            z_solver = adhesion_zeta(surface, rtol) if zeta is None else z0
+            info["bracket"], n = _solver_bracket(surface, z_solver, e, dg, energy_correction,
+                                                 beta, rtol, controls, upper)
+            info["solves"] += n
+        info["time"] = time.perf_counter() - t_start
+        return sigma_c, info
+    return sigma_c

@@ -1,0 +1,116 @@
+"""Pull-off stress: convergence with rtol, honest error estimates, contact semantics."""
+import warnings
+
+import numpy as np
+import pytest
+
+import persson_fast as pf
+
+SEED = pf.seed_scene()
+E_STAR = 2.9e9 / (1 - 0.3**2)
+DGAMMA = 0.06
+#: seed pull-off stress [Pa]: nested zeta grids of 10, 20, 40 and 80 points per decade
+#: compared at y0 = sigma0 + sigma_a(1) = 1000 Pa (diffusion tolerance 2e-8; the last two
+#: Richardson values agree to 0.3 Pa), plus the change of the branch from there to its end
+#: (6.97 Pa, on the 40-per-decade grid, corrected for that grid's error)
+SEED_PULL_OFF = 776371.1
+#: a self-affine scene with a visible pull-off (A/A0 = 0.65 at p_nom = 0)
+SA = pf.SelfAffine(hurst=0.8, q0=1e5, q1=1e8, h_rms=2e-8)
+SA_E_STAR = 1e9
+SA_DGAMMA = 0.05
+#: its pull-off stress [Pa] from pull_off at rtol = 1e-6 (estimated error 0.8 Pa)
+SA_PULL_OFF = 421152.0
+#: uncertainty of both references [Pa] (the scatter of the diffusion kernel at its tightest
+#: tolerances, about 2e-6 of sigma_c)
+REF_TOL = 1.5
+
+
+def seed_pull_off(rtol, **kw):
+    return pf.pull_off(SEED, e_star=E_STAR, work_of_adhesion=DGAMMA, rtol=rtol,
+                       full_output=True, **kw)
+
+
+@pytest.fixture(scope="module")
+def seed_runs():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)     # converged: no warning
+        return {1e-3: seed_pull_off(1e-3, bracket=False), 1e-4: seed_pull_off(1e-4)}
+
+
+def check_estimate(sigma_c, info, reference, rtol):
+    err = abs(sigma_c - reference)
+    assert err <= info["error_estimate"] + REF_TOL, (sigma_c, reference, info["error_parts"])
+    assert info["converged"] and info["error_estimate"] <= rtol * sigma_c, info["error_parts"]
+    assert info["error_estimate"] == pytest.approx(sum(info["error_parts"].values()))
+    return err
+
+
+def test_seed_converges_with_rtol(seed_runs):
+    errors = [check_estimate(*seed_runs[r], SEED_PULL_OFF, r) for r in (1e-3, 1e-4)]
+    assert errors[1] < errors[0]
+    assert errors[0] <= 1e-3 * SEED_PULL_OFF and errors[1] <= 1e-4 * SEED_PULL_OFF, errors
+
+
+@pytest.mark.slow
+def test_seed_tight_tolerance():
+    sigma_c, info = seed_pull_off(1e-5, bracket=False)
+    err = check_estimate(sigma_c, info, SEED_PULL_OFF, 1e-5)
+    assert err <= 1e-5 * SEED_PULL_OFF
+
+
+def test_extrapolation_beats_every_single_grid(seed_runs):
+    """On each nested grid the branch point at y0_grids falls short of the extrapolation."""
+    sigma_c, info = seed_runs[1e-4]
+    tension = np.array([t for _, t in info["grids"]])       # -sigma0 at y0_grids per grid
+    limit = info["extrapolated"][-1]
+    assert np.all(np.diff(tension) > 0) and tension[-1] < limit < sigma_c
+    gaps = limit - tension
+    assert np.all(gaps[1:] / gaps[:-1] < 0.3)              # second order: ~1/4 per halving
+    assert gaps[-1] > 4 * info["error_estimate"]           # one grid alone is far off
+    assert info["y0"] < info["y0_grids"] < 0.01 * sigma_c  # the end: y0 -> 0 on the branch
+
+
+def test_contact_just_above_none_just_below(seed_runs):
+    sigma_c, info = seed_runs[1e-4]
+    # the followed branch has contact all the way and never passes -sigma_c
+    assert np.all(info["branch"]["area"] > 0.3)
+    assert np.all(info["branch"]["sigma0"] >= -sigma_c - info["error_estimate"])
+    # solve_contact decides contact on one unextrapolated grid (its zeta-grid error at
+    # rtol 1e-4 is ~2e-3 of sigma_c here), so contact is checked 1% above -sigma_c
+    r = pf.solve_contact(SEED, np.array([-0.99 * sigma_c, -1.001 * sigma_c]), e_star=E_STAR,
+                         work_of_adhesion=DGAMMA, rtol=1e-4)
+    assert r.area[0] > 0.3 and r.area[1] == 0.0
+    # where solve_contact stops finding contact lies below sigma_c
+    lo, hi = info["bracket"]
+    assert lo < hi <= sigma_c + info["error_estimate"]
+
+
+def test_not_sticky_returns_zero():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        assert pf.pull_off(SEED, e_star=E_STAR, work_of_adhesion=0.01, rtol=1e-3) == 0.0
+        sigma_c, info = pf.pull_off(SEED, e_star=E_STAR, work_of_adhesion=0.0, rtol=1e-3,
+                                    full_output=True)
+    assert sigma_c == 0.0 and info["converged"]
+
+
+def test_self_affine_scene():
+    errors = []
+    for rtol in (1e-3, 1e-4):
+        sigma_c, info = pf.pull_off(SA, e_star=SA_E_STAR, work_of_adhesion=SA_DGAMMA, rtol=rtol,
+                                    full_output=True, bracket=False)
+        errors.append(check_estimate(sigma_c, info, SA_PULL_OFF, rtol))
+    assert errors[1] < errors[0] and errors[1] <= 1e-4 * SA_PULL_OFF
+    r = pf.solve_contact(SA, np.array([0.0, -0.99 * SA_PULL_OFF, -1.001 * SA_PULL_OFF]),
+                         e_star=SA_E_STAR, work_of_adhesion=SA_DGAMMA, rtol=1e-4)
+    assert r.area[0] > 0.5 and r.status[1] == 0 and r.area[1] > 0.0
+    # below -sigma_c no contact state is found (here the fixed point does not converge)
+    assert not (r.status[2] == 0 and r.area[2] > 0.0)
+
+
+@pytest.mark.slow
+def test_self_affine_tight_tolerance():
+    sigma_c, info = pf.pull_off(SA, e_star=SA_E_STAR, work_of_adhesion=SA_DGAMMA, rtol=1e-5,
+                                full_output=True, bracket=False)
+    err = check_estimate(sigma_c, info, SA_PULL_OFF, 1e-5)
+    assert err <= 1e-5 * SA_PULL_OFF
