@@ -200,7 +200,14 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
         outs = [o * (scale if k in (1, 4, 6) else 1.0) for k, o in enumerate(outs)]
         return outs, status, iterations, residual, G_dim
 
-    oc, sc, ic, rc, G_dim = fixed_point(zeta, None if start is None else np.array(start, float))
+    if start is not None:
+        start = np.array(start, dtype=float)
+        if start.shape not in ((p.size, zeta.size), (zeta.size,)):
+            raise ValueError(f"start must have shape (n_p, n_zeta) = ({p.size}, {zeta.size}) "
+                             f"[Pa] (detachment stresses on the zeta grid); got shape "
+                             f"{start.shape}")
+        start = np.broadcast_to(start, (p.size, zeta.size)).copy()
+    oc, sc, ic, rc, G_dim = fixed_point(zeta, start)
     start_fine = np.array([np.interp(np.log(fine), np.log(zeta), row) for row in oc[1]])
     start_fine[sc != 0] = -np.inf          # a failed coarse row starts from full contact
     of, sf, if_, rf, _ = fixed_point(fine, start_fine)

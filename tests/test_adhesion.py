@@ -130,7 +130,8 @@ def test_pull_off_brackets_the_contact():
     lo, hi = info["bracket"]
     assert hi - lo <= 1e-4 * sigma_c * 1.01
     z = adhesion_zeta(SEED, 1e-4)
-    r0 = seed(0.0)
+    r0 = solve_adhesive_contact(SEED, [0.0], z, e_star=E_STAR, work_of_adhesion=DGAMMA,
+                                rtol=1e-4, zeta_given=True)
     inside = solve_adhesive_contact(SEED, [-lo], z, e_star=E_STAR, work_of_adhesion=DGAMMA,
                                     rtol=1e-4, start=r0.sigma_a, zeta_given=True)
     outside = seed(-1.05 * sigma_c)

@@ -460,3 +460,13 @@ def test_seed_e_star_poisson_range():
         with raises(r"^poisson must lie in \[0, 0.5\]", "poisson = "):
             pf.seed_e_star(bad)
     assert pf.seed_e_star(0.0) == pf.SEED_YOUNG_MODULUS
+
+
+def test_adhesive_start_shape():
+    from persson_fast.adhesion import adhesion_zeta, solve_adhesive_contact
+
+    s = pf.seed_scene()
+    z = adhesion_zeta(s, 1e-2)
+    with raises(r"^start must have shape \(n_p, n_zeta\)", "got shape (3,)"):
+        solve_adhesive_contact(s, [0.0], z, e_star=3e9, work_of_adhesion=0.06, rtol=1e-2,
+                               zeta_given=True, start=np.zeros(3))
