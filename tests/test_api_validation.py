@@ -467,6 +467,6 @@ def test_adhesive_start_shape():
 
     s = pf.seed_scene()
     z = adhesion_zeta(s, 1e-2)
-    with raises(r"^start must have shape \(n_p, n_zeta\)", "got shape (3,)"):
+    with raises(r"^start must have shape \(n_p, n_zeta\)", lit("got shape (3,)")):
         solve_adhesive_contact(s, [0.0], z, e_star=3e9, work_of_adhesion=0.06, rtol=1e-2,
                                zeta_given=True, start=np.zeros(3))
