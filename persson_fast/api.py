@@ -24,12 +24,12 @@ __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
 ZETA_PER_DECADE = 8
 
 
-def _check_rtol(rtol) -> float:
-    arr = as_float_array(rtol, "rtol", "-", ndim=(0,))
-    check_finite(arr, "rtol", "-")
+def _check_rtol(rtol, name: str = "rtol") -> float:
+    arr = as_float_array(rtol, name, "-", ndim=(0,))
+    check_finite(arr, name, "-")
     value = float(arr)
     if not 1e-12 <= value <= 0.1:
-        raise ValueError(f"rtol must lie in [1e-12, 0.1] [-]; got rtol = {value!r}")
+        raise ValueError(f"{name} must lie in [1e-12, 0.1] [-]; got {name} = {value!r}")
     return value
 
 

@@ -59,7 +59,7 @@ import numpy as np
 from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
 from .adhesion import adhesion_zeta
 from .adhesion import pull_off as _pull_off
-from .api import default_zeta, solve_contact
+from .api import _check_rtol, default_zeta, solve_contact
 from .methods import METHODS
 from .surfaces import Surface
 
@@ -281,15 +281,6 @@ def _check_solve_value(name, value, label):
     else:
         check_positive(arr, label, unit)
     return float(arr)
-
-
-def _check_rtol(rtol, name="rtol"):
-    arr = as_float_array(rtol, name, "-", ndim=(0,))
-    check_finite(arr, name, "-")
-    value = float(arr)
-    if not 1e-12 <= value <= 0.1:
-        raise ValueError(f"{name} must lie in [1e-12, 0.1] [-]; got {name} = {value!r}")
-    return value
 
 
 def _check_pressure(pressure):
