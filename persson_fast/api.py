@@ -142,7 +142,9 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
         distinct = rows if sa.ndim == 2 else rows[:1]
         linear = _is_linear(G, distinct)
         jumps = bool(np.any((np.diff(G) == 0)[None, :] & (np.diff(distinct, axis=1) != 0)))
-    kind = "linear" if linear else ("jumps" if jumps else "smooth")
+    # a moving wall held at sigma_a[0] before G[0] > 0 is not one linear law from G = 0
+    starts_late = bool(G[0] > 0 and sa.ndim > 0 and np.any(distinct != distinct[:, :1]))
+    kind = "linear" if (linear and not starts_late) else ("jumps" if jumps else "smooth")
     use = choose_auto(kind) if method == "auto" else method
     check_serves(use, jumps=jumps, nonlinear=not linear)
     if use == "analytic" and level is not None:

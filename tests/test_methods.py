@@ -114,6 +114,9 @@ def test_auto_policy_serves_every_kind_and_is_recorded():
         assert name in METHODS and name != "auto"
     r = pf.solve_diffusion(G, 1.0, 0.5 + 0.05 * G, method="auto")
     assert r.method == "analytic"
+    late = np.array([1.0, 2.0, 3.0])        # a moving wall held at sigma_a[0] before G[0]
+    r = pf.solve_diffusion(late, 1.0, 0.5 + 0.1 * late, method="auto")
+    assert r.method == choose_auto("smooth") and r.success
     r = pf.solve_diffusion(G, 1.0, 0.5 + 0.05 * np.sqrt(G), method="auto")
     assert r.method == choose_auto("smooth")
     s = pf.seed_scene()
