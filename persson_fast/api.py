@@ -134,7 +134,8 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
         rows = sa.copy()
     if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
         raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
-    if level is not None and (not isinstance(level, (int, np.integer)) or not 0 <= level <= 10):
+    if level is not None and (isinstance(level, bool) or not isinstance(level, (int, np.integer))
+                              or not 0 <= level <= 10):
         raise ValueError(f"level must be an integer in [0, 10] [-] or None; got level = {level!r}")
     if sa.ndim == 0:
         linear, jumps = True, False          # a wall at rest

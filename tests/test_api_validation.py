@@ -445,7 +445,7 @@ def test_messages_show_plain_numbers(case):
 
 def test_diffusion_level_range():
     G = np.array([0.0, 1.0])
-    for bad in (-1, 11, 2.5):
+    for bad in (-1, 11, 2.5, True):
         with raises(r"^level must be an integer in \[0, 10\]", lit(repr(bad))):
             pf.solve_diffusion(G, 1.0, level=bad)
 
