@@ -114,3 +114,17 @@ def test_self_affine_tight_tolerance():
                                 full_output=True, bracket=False)
     err = check_estimate(sigma_c, info, SA_PULL_OFF, 1e-5)
     assert err <= 1e-5 * SA_PULL_OFF
+
+
+def test_solve_contact_never_silently_separates_above_pull_off():
+    """Just above -sigma_c the fixed point on the default grid may lose the contact branch;
+    such a pressure is flagged (not converged, or LOST_CONTACT), never a silent A = 0."""
+    from persson_fast._kernels.status import LOST_CONTACT
+
+    p = -np.linspace(0.7715e6, 0.7760e6, 10)
+    assert np.all(-p < SEED_PULL_OFF)
+    r = pf.solve_contact(SEED, p, e_star=E_STAR, work_of_adhesion=DGAMMA, rtol=1e-4)
+    silent = (r.area <= 0) & (r.status == 0)
+    assert not np.any(silent), (p[silent], r.message)
+    assert np.any(r.status == LOST_CONTACT), r.message
+    assert "pull-off stress" in r.message
