@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numba
 
-__all__ = ["njit_serial", "njit_parallel", "prange"]
+__all__ = ["njit_serial", "njit_parallel", "njit_sweeps", "prange"]
 
 prange = numba.prange
 
@@ -25,3 +25,13 @@ def njit_serial(func):
 def njit_parallel(func):
     """Compile ``func`` in nopython mode with ``prange`` parallelism (not cached)."""
     return numba.njit(parallel=True, cache=False, fastmath=False, nogil=True, error_model="numpy")(func)
+
+
+def njit_sweeps(func):
+    """(serial, parallel) dispatchers of one sweep body written with ``prange``.
+
+    Compiled without ``parallel=True``, ``prange`` is a plain ``range``: one body serves both
+    drivers, so their results are the same code's (bitwise equal, each iteration writing only
+    its own rows).
+    """
+    return njit_serial(func), njit_parallel(func)

@@ -1,10 +1,9 @@
 """The adhesive fixed point (seed Eqs. 8-9): limits, bookkeeping, monotonicity, hard cases."""
 import numpy as np
-import pytest
 from hypothesis import given, settings, strategies as st
 
 import persson_fast as pf
-from persson_fast.adhesion import adhesion_zeta, refine_zeta, solve_adhesive_contact
+from persson_fast.adhesion import adhesion_zeta, solve_adhesive_contact
 
 SEED = pf.seed_scene()
 E_STAR = 2.9e9 / (1 - 0.3**2)

@@ -5,7 +5,6 @@ sqrt(G_last) anywhere from 1 Pa to 1e9 Pa, nominal pressures 1e-4..10 sqrt(G_las
 sigma_a that are zero, linear in G (a + b G, b of either sign) or piecewise linear.
 """
 import numpy as np
-import pytest
 from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 

@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from .._jit import njit_parallel, njit_serial, prange
+from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
 from .diffusion import solve_variant
 
@@ -272,31 +272,18 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     return status, it, residual
 
 
-@njit_serial
-def adhesive_sweep_serial(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
-                          omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error,
-                          status, iterations, residual):
-    """All pressures in turn; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,)."""
-    for k in range(pressures.shape[0]):
-        s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
-                                        max_iter, m_hist, omega, x_init[k], area[k],
-                                        sigma_a[k], g[k],
-                                        u[k], load[k], det_area[k], det_load[k], error[k])
-        status[k] = s
-        iterations[k] = it
-        residual[k] = res
-
-
-@njit_parallel
-def adhesive_sweep_parallel(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
-                            omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error,
-                            status, iterations, residual):
-    """Same as :func:`adhesive_sweep_serial`, pressures over threads with ``prange``."""
+def _adhesive_sweep(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
+                    omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error, status,
+                    iterations, residual):
+    """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,)."""
     for k in prange(pressures.shape[0]):
-        s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp,
-                                        max_iter, m_hist, omega, x_init[k], area[k],
-                                        sigma_a[k], g[k],
-                                        u[k], load[k], det_area[k], det_load[k], error[k])
+        s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
+                                        n_damp, max_iter, m_hist, omega, x_init[k], area[k],
+                                        sigma_a[k], g[k], u[k], load[k], det_area[k],
+                                        det_load[k], error[k])
         status[k] = s
         iterations[k] = it
         residual[k] = res
+
+
+adhesive_sweep_serial, adhesive_sweep_parallel = njit_sweeps(_adhesive_sweep)

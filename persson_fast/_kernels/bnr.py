@@ -98,8 +98,9 @@ import math
 
 import numpy as np
 
-from .._jit import njit_parallel, njit_serial, prange
+from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
+from .diffusion import fill_state
 
 # --- constants of the scheme (dimensionless, y0 = 1, t = 2 G / y0^2) -----------------------
 ALPHA = 0.3           # weight of the onset term of phi (onset length 2 ALPHA sqrt(L_START))
@@ -371,18 +372,6 @@ def _solve_grid(mult, seg_ta, seg_tb, seg_pa, seg_pb, seg_kind, seg_n, seg_cs, s
 
 
 @njit_serial
-def _fill(k_from, k_to, area, load, det_area, det_load, err, out_area, out_load, out_det_area,
-          out_det_load, out_error):
-    """Write one state into the outputs k_from .. k_to - 1."""
-    for k in range(k_from, k_to):
-        out_area[k] = area
-        out_load[k] = load
-        out_det_area[k] = det_area
-        out_det_load[k] = det_load
-        out_error[k] = err
-
-
-@njit_serial
 def _segment_counts(seg_ld, seg_nmin, n_seg, h_u, seg_n):
     """Base intervals per segment: the largest step in phi is h_u (at least the minimum)."""
     for q in range(n_seg):
@@ -507,7 +496,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
     y0 = sigma0 + sa0
     if y0 <= 0.0:
         # separated: the start lies on or below the wall
-        _fill(0, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
+        fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
               out_det_load, out_error)
         return st.OK
     # --- the wall in scaled units: b(t) = -(sa(G) - sa0) / y0, t = 2 G / y0^2 -------------
@@ -551,7 +540,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
     c_far = math.sqrt(2.0 * L_START)
     # --- outputs while the wall is still far: the free state (A = 1 to ~1e-17) --------------
     if t_end <= 0.0 or _wall_far_until(tp, bp, sp, n_pc, t_end, c_far):
-        _fill(0, nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
+        fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
               out_det_load, out_error)
         counts[0] = 0
         return st.OK
@@ -665,7 +654,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         ta = tb
     if n_seg == 0:
         # every schedule point lies before the start: the free state throughout
-        _fill(0, nt, 1.0, sigma0, 0.0, 0.0, ROUND_FLOOR, out_area, out_load, out_det_area,
+        fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, ROUND_FLOOR, out_area, out_load, out_det_area,
               out_det_load, out_error)
         return st.OK
     # --- three runs (N, 2N, 4N) and two Richardson steps ----------------------------------
@@ -683,7 +672,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
                          seg_piece, n_seg, sk, tp, bp, sp, f_d, f_e, err, scratch, counts)
         if status != st.OK:
             nan = math.nan
-            _fill(0, nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
+            fill_state(0, nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
                   out_det_load, out_error)
             return status
     else:
@@ -739,7 +728,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         counts[1] = work
         if not have:
             nan = math.nan
-            _fill(0, nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
+            fill_state(0, nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
                   out_det_load, out_error)
             return status if status != st.OK else st.GRID_CAP
     counts[2] = counts[1]
@@ -776,25 +765,15 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
     return status
 
 
-@njit_serial
-def bnr_sweep_serial(G, sa_rows, pressures, rtol, level, area, load, det_area, det_load, error,
-                     status, counts):
-    """Solve every pressure in turn with :func:`solve_bnr_one`.
+def _bnr_sweep(G, sa_rows, pressures, rtol, level, area, load, det_area, det_load, error,
+               status, counts):
+    """Solve every pressure with :func:`solve_bnr_one`.
 
     ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); ``status`` (n_p,); ``counts`` (n_p, 3).
-    """
-    for k in range(pressures.shape[0]):
-        status[k] = solve_bnr_one(G, sa_rows[k], pressures[k], rtol, level, area[k], load[k],
-                                  det_area[k], det_load[k], error[k], counts[k])
-
-
-@njit_parallel
-def bnr_sweep_parallel(G, sa_rows, pressures, rtol, level, area, load, det_area, det_load,
-                       error, status, counts):
-    """Same as :func:`bnr_sweep_serial`, pressures spread over threads with ``prange``.
-
-    Each iteration writes only its own rows, so the result equals the serial sweep bitwise.
     """
     for k in prange(pressures.shape[0]):
         status[k] = solve_bnr_one(G, sa_rows[k], pressures[k], rtol, level, area[k], load[k],
                                   det_area[k], det_load[k], error[k], counts[k])
+
+
+bnr_sweep_serial, bnr_sweep_parallel = njit_sweeps(_bnr_sweep)

@@ -103,10 +103,10 @@ def _running_min_wall_distance(G_k, sa_k, sa0, g):
 
 
 @njit_serial
-def _wall_far_start(G_k, sa_k, sa0):
-    """Largest G <= C_START over which the wall stays K_WALL_FAR std from the free Gaussian."""
+def wall_far_limit(G_k, sa_k, sa0, g_hi):
+    """Largest G <= g_hi over which the wall stays K_WALL_FAR std from the free Gaussian."""
     lo = 0.0
-    hi = C_START
+    hi = g_hi
     if _running_min_wall_distance(G_k, sa_k, sa0, hi) >= K_WALL_FAR * math.sqrt(2.0 * hi):
         return hi
     for _ in range(60):
@@ -143,15 +143,15 @@ def _wall_always_far(G_k, sa_k, sa0, k_far):
 
 
 @njit_serial
-def _fill_state(k_from, k_to, area, load, det_area, det_load, out_area, out_load,
-                out_det_area, out_det_load, out_error):
-    """Write one exact state (no error) into the outputs k_from .. k_to - 1."""
+def fill_state(k_from, k_to, area, load, det_area, det_load, err, out_area, out_load,
+               out_det_area, out_det_load, out_error):
+    """Write one state (area, load, detached area and load, error) into outputs k_from .. k_to - 1."""
     for k in range(k_from, k_to):
         out_area[k] = area
         out_load[k] = load
         out_det_area[k] = det_area
         out_det_load[k] = det_load
-        out_error[k] = 0.0
+        out_error[k] = err
 
 
 @njit_serial
@@ -600,7 +600,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_
         if sigma0 + sa[k] <= 0.0:
             separated = True
     if separated:
-        _fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, out_area, out_load, out_det_area,
+        fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
                     out_det_load, out_error)
         return st.OK
     y0 = sigma0 + sa0
@@ -616,7 +616,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_
     sig0s = sigma0 / y0
     # the wall never comes near the distribution: the free solution is exact (A = 1)
     if _wall_always_far(G_k, sa_k, sa0s, K_ALWAYS_FAR):
-        _fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, out_area, out_load, out_det_area,
+        fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
                     out_det_load, out_error)
         return st.OK
     # first linear piece after G = 0
@@ -638,7 +638,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_
         piece_end = 0.0
         b_lin = 0.0
     g_s1 = min(C_START, piece_end)
-    g_s2 = _wall_far_start(G_k, sa_k, sa0s)
+    g_s2 = wall_far_limit(G_k, sa_k, sa0s, C_START)
     start_linear = g_s1 >= g_s2
     g_start = g_s1 if start_linear else g_s2
     # outputs up to the start come from the exact start family
@@ -669,7 +669,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_
     if start_linear:
         a_start, _ = linear_wall_area_moment(1.0, b_lin, g_start)
         if a_start <= 0.0:
-            _fill_state(i_first - 1, nt, 0.0, 0.0, 1.0, -sigma0, out_area, out_load,
+            fill_state(i_first - 1, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load,
                         out_det_area, out_det_load, out_error)
             return st.OK
     # grid: domain, spacing (tolerance, start width, Peclet), step density

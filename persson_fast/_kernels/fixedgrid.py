@@ -78,7 +78,7 @@ discretisation error, which is what checks them).
 
 *Start.* The exact solution at a small G_s: the linearly moving wall (or the images solution)
 with the slope of the first linear piece of sigma_a, at G_s = min(C_START y0^2, end of that
-piece), or the free Gaussian when the wall stays K_WALL_FAR standard deviations away until
+piece), or the free Gaussian when the wall stays K_WALL_FAR (7) standard deviations away until
 later. Schedule points before G_s come from the exact solution.
 
 *Resolution.* Two runs (h, dt) and (h/2, dt/2); the fine one is reported and their difference
@@ -107,15 +107,15 @@ import math
 
 import numpy as np
 
-from .._jit import njit_parallel, njit_serial, prange
+from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
+from .diffusion import boundary_at, fill_state, wall_far_limit
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf
 from .tridiag import thomas
 
 # --- constants of the scheme (dimensionless, y0 = 1) ------------------------------------
 K_DOMAIN = 6.0        # grid eta in [-K, K]; free variance in eta < 1/2: tail < 1e-16
 C_START = 0.25        # latest start G_s = C_START y0^2 with the exact linear-wall solution
-K_WALL_FAR = 7.0      # free Gaussian start while the wall stays 7 std away (2 Phi(-7) = 3e-12)
 THETA_MIN = 0.5       # a node closer than THETA_MIN h to the wall is switched off
 WALL_STEP = 1.0       # the wall crosses at most this many base spacings per step
 K_TRAVEL = 4.0        # an advancing wall: only within 4 free std of the centre
@@ -133,57 +133,6 @@ LEAK_TOL = 1e-10      # mass lost through the grid ends above this is flagged (F
 N_TV = 32             # samples per piece for the wall travel estimate
 MU_MIN = -1.0         # clip of the lagged decay rate mu of the time steps (per unit s)
 MU_MAX = 8.0
-
-
-@njit_serial
-def _wall_sa(G_k, sa_k, g):
-    """sigma_a at diffusion time g (scaled schedule): linear between points, flat outside."""
-    n = G_k.shape[0]
-    if g <= G_k[0]:
-        return sa_k[0]
-    if g >= G_k[n - 1]:
-        return sa_k[n - 1]
-    lo = 0
-    hi = n - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if G_k[mid] <= g:
-            lo = mid
-        else:
-            hi = mid
-    return sa_k[lo] + (sa_k[hi] - sa_k[lo]) * (g - G_k[lo]) / (G_k[hi] - G_k[lo])
-
-
-@njit_serial
-def _min_wall_distance(G_k, sa_k, sa0, g):
-    """min over G' <= g of 1 + sigma_a(G') - sigma_a(0): distance of the free centre to the wall."""
-    m = 1.0
-    for k in range(G_k.shape[0]):
-        if G_k[k] > g:
-            break
-        d = 1.0 + sa_k[k] - sa0
-        if d < m:
-            m = d
-    d = 1.0 + _wall_sa(G_k, sa_k, g) - sa0
-    if d < m:
-        m = d
-    return m
-
-
-@njit_serial
-def _wall_far_limit(G_k, sa_k, sa0, g_hi):
-    """Largest G <= g_hi until which the wall stays K_WALL_FAR free std from the free centre."""
-    if _min_wall_distance(G_k, sa_k, sa0, g_hi) >= K_WALL_FAR * math.sqrt(2.0 * g_hi):
-        return g_hi
-    lo = 0.0
-    hi = g_hi
-    for _ in range(80):
-        mid = 0.5 * (lo + hi)
-        if _min_wall_distance(G_k, sa_k, sa0, mid) >= K_WALL_FAR * math.sqrt(2.0 * mid):
-            lo = mid
-        else:
-            hi = mid
-    return lo
 
 
 @njit_serial
@@ -348,7 +297,7 @@ def _march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sig0, c_w, n
     ext = ext[: n + 1]
     _operator(K, h, n, lo, di, up)
     w = math.sqrt(c_w + 4.0 * g_start)
-    sa_cur = _wall_sa(G_k, sa_k, g_start)
+    sa_cur = boundary_at(G_k, sa_k, g_start)
     # exact start, sampled at the nodes (p = w P)
     x_w = -1.0 - (sa_cur - sa0)
     for j in range(n + 1):
@@ -479,7 +428,7 @@ def _piece_steps(G_k, sa_k, i_first, g_start, sa0, c_w, h, nper, out):
     K = K_DOMAIN
     total = 0.0
     g_prev = g_start
-    sa_prev = _wall_sa(G_k, sa_k, g_start)
+    sa_prev = boundary_at(G_k, sa_k, g_start)
     for i in range(out.shape[0]):
         out[i] = 0
     for i in range(i_first, G_k.shape[0]):
@@ -539,17 +488,6 @@ def _advancing_speed(G_k, sa_k, i_first, sa0, c_w):
 
 
 @njit_serial
-def _fill(k_from, k_to, area, load, det_area, det_load, out_area, out_load, out_det_area,
-          out_det_load, out_error):
-    for k in range(k_from, k_to):
-        out_area[k] = area
-        out_load[k] = load
-        out_det_area[k] = det_area
-        out_det_load[k] = det_load
-        out_error[k] = 0.0
-
-
-@njit_serial
 def _check_input(G, sa, sigma0, rtol, level, n_damp, out_area, out_load, out_det_area,
                  out_det_load, out_error, counts):
     """Shapes, finiteness, ordering; repeated G with another sigma_a (a wall jump) is refused."""
@@ -598,8 +536,8 @@ def solve_fixedgrid_detail(G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
         out_error[:] = np.nan
         return st.BAD_INPUT
     if sigma0 + sa[0] <= 0.0:
-        _fill(0, nt, 0.0, 0.0, 1.0, -sigma0, out_area, out_load, out_det_area, out_det_load,
-              out_error)
+        fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
+                   out_det_load, out_error)
         for k in range(nt):
             out_flux_det[k] = 1.0
             out_flux_det_load[k] = -sigma0
@@ -634,7 +572,7 @@ def solve_fixedgrid_detail(G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
             k += 1
     g_end = G_k[nt]
     g_lin = min(C_START, piece_end)
-    g_free = _wall_far_limit(G_k, sa_k, sa0, g_end) if g_end > 0.0 else 0.0
+    g_free = wall_far_limit(G_k, sa_k, sa0, g_end) if g_end > 0.0 else 0.0
     start_linear = g_lin >= g_free
     g_start = g_lin if start_linear else g_free
     # schedule points up to the start: exact
@@ -664,8 +602,8 @@ def solve_fixedgrid_detail(G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
     if start_linear:
         a_start, _ = linear_wall_area_moment(1.0, b_lin, g_start)
         if a_start <= 0.0:
-            _fill(i_first - 1, nt, 0.0, 0.0, 1.0, -sigma0, out_area, out_load, out_det_area,
-                  out_det_load, out_error)
+            fill_state(i_first - 1, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load,
+                       out_det_area, out_det_load, out_error)
             for k in range(i_first - 1, nt):
                 out_flux_det[k] = 1.0
                 out_flux_det_load[k] = -sigma0
@@ -808,22 +746,14 @@ def solve_fixedgrid_one(G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
                                   out_det_area, out_det_load, out_error, fd, fdl, counts)
 
 
-@njit_serial
-def fixedgrid_sweep_serial(G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area,
-                           det_load, error, status, counts):
-    """Solve every pressure in turn. ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); status (n_p,);
+def _fixedgrid_sweep(G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area, det_load,
+                     error, status, counts):
+    """Solve every pressure. ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); status (n_p,);
     counts (n_p, 3)."""
-    for k in range(pressures.shape[0]):
-        status[k] = solve_fixedgrid_one(G, sa_rows[k], pressures[k], rtol, level, n_damp,
-                                        area[k], load[k], det_area[k], det_load[k], error[k],
-                                        counts[k])
-
-
-@njit_parallel
-def fixedgrid_sweep_parallel(G, sa_rows, pressures, rtol, level, n_damp, area, load,
-                             det_area, det_load, error, status, counts):
-    """Same as :func:`fixedgrid_sweep_serial`, pressures spread over threads with ``prange``."""
     for k in prange(pressures.shape[0]):
         status[k] = solve_fixedgrid_one(G, sa_rows[k], pressures[k], rtol, level, n_damp,
                                         area[k], load[k], det_area[k], det_load[k], error[k],
                                         counts[k])
+
+
+fixedgrid_sweep_serial, fixedgrid_sweep_parallel = njit_sweeps(_fixedgrid_sweep)

@@ -7,25 +7,17 @@ bitwise-equal results. ``variant`` selects the grid variant of
 """
 from __future__ import annotations
 
-from .._jit import njit_parallel, njit_serial, prange
+from .._jit import njit_sweeps, prange
 from .diffusion import solve_variant
 
 
-@njit_serial
-def sweep_serial(variant, G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area,
-                 det_load, error, status, counts):
-    """Solve every pressure in turn. ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); status (n_p,)."""
-    for k in range(pressures.shape[0]):
-        status[k] = solve_variant(variant, G, sa_rows[k], pressures[k], rtol, level, n_damp,
-                                  area[k], load[k], det_area[k], det_load[k], error[k],
-                                  counts[k])
-
-
-@njit_parallel
-def sweep_parallel(variant, G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area,
-                   det_load, error, status, counts):
-    """Same as :func:`sweep_serial`, pressures spread over threads with ``prange``."""
+def _sweep(variant, G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area, det_load,
+           error, status, counts):
+    """Solve every pressure. ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); status (n_p,)."""
     for k in prange(pressures.shape[0]):
         status[k] = solve_variant(variant, G, sa_rows[k], pressures[k], rtol, level, n_damp,
                                   area[k], load[k], det_area[k], det_load[k], error[k],
                                   counts[k])
+
+
+sweep_serial, sweep_parallel = njit_sweeps(_sweep)
