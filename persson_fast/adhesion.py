@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
+from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial, detachment_update
 from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite
 from .methods import METHODS, check_serves, choose_auto
@@ -323,17 +323,11 @@ class _Branch:
 
     def update(self, area):
         """Eqs. 8-9: the detachment stress (scaled) of an area profile."""
-        if self.gamma_s >= 0.0:
-            f = area * (self.gamma_s + (1.0 - self.gamma_s) * area * area)
-        else:
-            f = area
-        terms = self.wa * f[:-1] + self.wb * f[1:]
-        u = np.zeros(area.size)
-        u[:-1] = np.cumsum(terms[::-1])[::-1]
-        g = np.zeros(area.size)
-        pos = area > 0.0
-        g[pos] = (area[-1] - u[pos]) / area[pos]
-        return self.c * np.sqrt(np.maximum(g, 0.0))
+        n = area.size
+        x = np.empty(n)
+        detachment_update(area, self.c, self.wa, self.wb, self.gamma_s, np.empty(n),
+                          np.empty(n), x)
+        return x
 
     def evaluate(self, x, sigma0, rtol):
         """F(x): diffuse against the wall x at nominal stress sigma0 (scaled), then Eqs. 8-9."""
