@@ -9,20 +9,22 @@ import persson_fast as pf
 SEED = pf.seed_scene()
 E_STAR = 2.9e9 / (1 - 0.3**2)
 DGAMMA = 0.06
-#: seed pull-off stress [Pa]: nested zeta grids of 10, 20, 40 and 80 points per decade
-#: compared at y0 = sigma0 + sigma_a(1) = 1000 Pa (diffusion tolerance 2e-8; the last two
-#: Richardson values agree to 0.3 Pa), plus the change of the branch from there to its end
-#: (6.97 Pa, on the 40-per-decade grid, corrected for that grid's error)
-SEED_PULL_OFF = 776371.1
+#: seed pull-off stress [Pa]: pull_off at rtol = 1e-6 on its default grid (776369.10 Pa,
+#: estimated error 0.45 Pa) and on a zeta grid of twice the density with a 4x tighter
+#: diffusion tolerance (776369.45 Pa, nested grids of 798 to 3189 points compared at
+#: y0 = sigma0 + sigma_a(1) = 769 Pa, whose last two Richardson values agree to 0.015 Pa)
+SEED_PULL_OFF = 776369.3
 #: a self-affine scene with a visible pull-off (A/A0 = 0.65 at p_nom = 0)
 SA = pf.SelfAffine(hurst=0.8, q0=1e5, q1=1e8, h_rms=2e-8)
 SA_E_STAR = 1e9
 SA_DGAMMA = 0.05
-#: its pull-off stress [Pa] from pull_off at rtol = 1e-6 (estimated error 0.8 Pa)
-SA_PULL_OFF = 421152.0
-#: uncertainty of both references [Pa] (the scatter of the diffusion kernel at its tightest
-#: tolerances, about 2e-6 of sigma_c)
-REF_TOL = 1.5
+#: its pull-off stress [Pa]: pull_off at rtol = 1e-6 on its default grid (421152.11 Pa,
+#: estimated error 0.18 Pa) and on a grid of twice the density with a 4x tighter diffusion
+#: tolerance (421152.12 Pa)
+SA_PULL_OFF = 421152.12
+#: uncertainty of both references [Pa]: the spread of the seed's values above, about
+#: 5e-7 of sigma_c, which is the scatter of the diffusion kernel at its tightest tolerances
+REF_TOL = 0.4
 
 
 def seed_pull_off(rtol, **kw):
@@ -49,6 +51,16 @@ def test_seed_converges_with_rtol(seed_runs):
     errors = [check_estimate(*seed_runs[r], SEED_PULL_OFF, r) for r in (1e-3, 1e-4)]
     assert errors[1] < errors[0]
     assert errors[0] <= 1e-3 * SEED_PULL_OFF and errors[1] <= 1e-4 * SEED_PULL_OFF, errors
+
+
+def test_seed_default_tolerance():
+    """At the default rtol = 1e-6 the estimate meets rtol and the value is within it."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        sigma_c, info = seed_pull_off(1e-6, bracket=False)
+    err = check_estimate(sigma_c, info, SEED_PULL_OFF, 1e-6)
+    assert err <= 1e-6 * SEED_PULL_OFF
+    assert info["unconverged"] == 0
 
 
 @pytest.mark.slow
@@ -109,11 +121,12 @@ def test_self_affine_scene():
 
 
 @pytest.mark.slow
-def test_self_affine_tight_tolerance():
-    sigma_c, info = pf.pull_off(SA, e_star=SA_E_STAR, work_of_adhesion=SA_DGAMMA, rtol=1e-5,
+@pytest.mark.parametrize("rtol", [1e-5, 1e-6])
+def test_self_affine_tight_tolerance(rtol):
+    sigma_c, info = pf.pull_off(SA, e_star=SA_E_STAR, work_of_adhesion=SA_DGAMMA, rtol=rtol,
                                 full_output=True, bracket=False)
-    err = check_estimate(sigma_c, info, SA_PULL_OFF, 1e-5)
-    assert err <= 1e-5 * SA_PULL_OFF
+    err = check_estimate(sigma_c, info, SA_PULL_OFF, rtol)
+    assert err <= rtol * SA_PULL_OFF
 
 
 def test_solve_contact_never_silently_separates_above_pull_off():

@@ -53,7 +53,9 @@ NPER_BASE = 5.0       # coarse steps per unit of ln G at rtol = 1e-6 (11.5 per d
 NPER_WIDTH = 40.0     # coarse steps per profile width sqrt(2G) travelled by the wall
 RECEDING_FACTOR = 0.25 # a receding wall (sigma_a growing) needs fewer steps per width travelled
 PECLET_MAX = 0.25      # largest cell Peclet number of the wall drift (exponentially fitted)
-WORK_MAX = 4e6       # coarse node-steps above which resolution is cut (and flagged)
+WORK_MAX = 4e6       # coarse node-steps above which resolution is cut (and flagged), rtol >= 1e-6
+WORK_GROWTH_MAX = 30.0  # below rtol = 1e-6 the cap grows as (1e-6/rtol)^(1/2), as the work of a
+                        # plain "cn" scene does, up to this factor (rtol = 1.1e-9)
 MAX_LEVELS = 8        # at most 2^8 times finer at the start than at the end
 N_MAX = 4096          # node cap of the coarse grid
 LEAK_TOL = 1e-10      # far-field leakage above this is flagged
@@ -518,20 +520,23 @@ def variant_resolution(variant, rtol, level):
 
     ``level >= 0`` is the explicit ladder (both scales double per level, from LEVEL0_SCALE);
     else the scales follow from ``rtol`` and the variant's order: the node spacing is
-    H_BASE / space scale and the steps per ln G are NPER_BASE * time scale.
+    H_BASE / space scale and the steps per ln G are NPER_BASE * time scale. The last entry
+    is the work cap in coarse node-steps: WORK_MAX, grown below rtol = 1e-6 as
+    (1e-6/rtol)^(1/2) up to WORK_GROWTH_MAX (the level ladder keeps WORK_MAX).
     """
     theta = 1.0 if variant == IMPLICIT_EULER else 0.5
     extrapolate = variant == CN
     if level >= 0:
         s = LEVEL0_SCALE * 2.0 ** level
-        return s, s, theta, extrapolate
+        return s, s, theta, extrapolate, WORK_MAX
+    work_max = WORK_MAX * min(max(1.0, math.sqrt(1e-6 / rtol)), WORK_GROWTH_MAX)
     if variant == CN:
         s = (1e-6 / rtol) ** 0.25
-        return s, s, theta, extrapolate
+        return s, s, theta, extrapolate, work_max
     s = max(LEVEL0_SCALE, math.sqrt(CN_PLAIN_C / rtol))
     if variant == CN_PLAIN:
-        return s, s, theta, extrapolate
-    return s, max(LEVEL0_SCALE, IE_C / rtol), theta, extrapolate
+        return s, s, theta, extrapolate, work_max
+    return s, max(LEVEL0_SCALE, IE_C / rtol), theta, extrapolate, work_max
 
 
 @njit_serial
@@ -539,23 +544,23 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
               out_error):
     """The "cn" variant of :func:`solve_grid` at tolerance ``rtol`` (no work counts)."""
     counts = np.zeros(3, dtype=np.int64)
-    sx, stp, theta, extrapolate = variant_resolution(CN, rtol, -1)
-    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, n_damp, out_area, out_load,
-                      out_det_area, out_det_load, out_error, counts)
+    sx, stp, theta, extrapolate, work_max = variant_resolution(CN, rtol, -1)
+    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp, out_area,
+                      out_load, out_det_area, out_det_load, out_error, counts)
 
 
 @njit_serial
 def solve_variant(variant, G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
                   out_det_area, out_det_load, out_error, counts):
     """One pressure with grid variant ``variant`` (CN, CN_PLAIN, IMPLICIT_EULER)."""
-    sx, stp, theta, extrapolate = variant_resolution(variant, rtol, level)
-    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, n_damp, out_area, out_load,
-                      out_det_area, out_det_load, out_error, counts)
+    sx, stp, theta, extrapolate, work_max = variant_resolution(variant, rtol, level)
+    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp, out_area,
+                      out_load, out_det_area, out_det_load, out_error, counts)
 
 
 @njit_serial
-def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_area,
-               out_load, out_det_area, out_det_load, out_error, counts):
+def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_damp,
+               out_area, out_load, out_det_area, out_det_load, out_error, counts):
     """Contact area and load bookkeeping of one nominal pressure, in consistent units.
 
     Parameters
@@ -569,6 +574,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_
     theta : float -- 0.5 (Crank-Nicolson) or 1 (implicit Euler) for the undamped steps.
     extrapolate : bool -- report the Richardson extrapolation of the runs (N, M), (2N, 2M)
         (order 2 -> 4 for Crank-Nicolson); else the finer run.
+    work_max : float -- coarse node-steps past which the resolution is cut (GRID_CAP).
     n_damp : int -- Crank-Nicolson steps replaced by two implicit-Euler half steps after
         each wall jump (Rannacher damping).
     out_* : (n_t,) float64 -- area A/A0, load int sigma P, detached area, detached load
@@ -724,7 +730,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_
         n_c = (N_MAX // block) * block
         status = st.GRID_CAP
     h_c = xi_max / n_c
-    # work cap: estimate the coarse steps as march will take them; past WORK_MAX node-steps
+    # work cap: estimate the coarse steps as march will take them; past work_max node-steps
     # the step densities (then the grid) are reduced and the result is flagged
     m_est = 0.0
     g_prev = g_start
@@ -739,9 +745,9 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, n_damp, out_
         m_est += max(m_l, m_w, 1.0)
         g_prev = g_k
     m_est += n_levels
-    if m_est * n_c > WORK_MAX:
+    if m_est * n_c > work_max:
         status = st.GRID_CAP
-        f_cut = WORK_MAX / (m_est * n_c)
+        f_cut = work_max / (m_est * n_c)
         nper *= f_cut
         nper_width *= f_cut
         if nper < 0.05:
