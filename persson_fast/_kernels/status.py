@@ -9,7 +9,7 @@ BAD_INPUT = 5          # inconsistent arrays reached the kernel (a bug in the ca
 NOT_CONVERGED = 6      # a fixed point (adhesion) did not reach its tolerance
 NEGATIVE_DENSITY = 7   # the stress distribution became markedly negative (ringing)
 WALL_JUMP = 8          # the wall jumped (flat G): accuracy after a jump is below the scheme's order
-LOST_CONTACT = 9       # adhesion, tension: separated although pull_off finds contact here
+LOST_CONTACT = 9       # adhesion, tension: separated, although pull_off finds contact there
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -22,7 +22,8 @@ STATUS_MESSAGES = {
     NEGATIVE_DENSITY: "stress distribution became negative beyond rounding",
     WALL_JUMP: ("the wall jumped over a flat stretch of G: the error after a jump converges at "
                 "first to second order, not fourth; rtol is not guaranteed (compare a smaller rtol)"),
-    LOST_CONTACT: ("separated, although pull_off finds contact down to this tension: the fixed "
-                   "point on this zeta grid lost the end of the contact branch (use a smaller "
-                   "rtol, or pull_off for the pull-off stress)"),
+    LOST_CONTACT: ("separated, although pull_off finds contact down to this tension (or cannot "
+                   "exclude it within its error estimate): the fixed point on this zeta grid "
+                   "lost the end of the contact branch (use a smaller rtol, or pull_off for the "
+                   "pull-off stress)"),
 }
