@@ -340,8 +340,9 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     pressure in compiled code (see :mod:`persson_fast.adhesion`); nominal tension (p < 0) is
     allowed, and below the pull-off stress the area is 0. A tension that ends separated
     although :func:`pull_off` finds contact there (the fixed point on the zeta grid lost the
-    end of the contact branch), or cannot exclude it within its error estimate, gets status 9. The default zeta grid is then
-    :func:`persson_fast.adhesion.adhesion_zeta` (finer, and refined near zeta = 1).
+    end of the contact branch), or cannot exclude it within its error estimate, gets
+    status 9. The default zeta grid is then :func:`persson_fast.adhesion.adhesion_zeta`
+    (finer, and refined near zeta = 1).
     Without adhesion the whole surface enters through G(zeta) (seed Eqs. 4-7); the area is
     erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the
     diffusion numerically (the same kernel the adhesive problem uses).

@@ -10,7 +10,7 @@ SEED = pf.seed_scene()
 E_STAR = 2.9e9 / (1 - 0.3**2)
 DGAMMA = 0.06
 #: seed pull-off stress [Pa]: pull_off at rtol = 1e-6 on its default grid (776369.10 Pa,
-#: estimated error 0.45 Pa) and on a zeta grid of twice the density with a 4x tighter
+#: estimated error 0.69 Pa) and on a zeta grid of twice the density with a 4x tighter
 #: diffusion tolerance (776369.45 Pa, nested grids of 798 to 3189 points compared at
 #: y0 = sigma0 + sigma_a(1) = 769 Pa, whose last two Richardson values agree to 0.015 Pa)
 SEED_PULL_OFF = 776369.3
@@ -19,7 +19,7 @@ SA = pf.SelfAffine(hurst=0.8, q0=1e5, q1=1e8, h_rms=2e-8)
 SA_E_STAR = 1e9
 SA_DGAMMA = 0.05
 #: its pull-off stress [Pa]: pull_off at rtol = 1e-6 on its default grid (421152.11 Pa,
-#: estimated error 0.18 Pa) and on a grid of twice the density with a 4x tighter diffusion
+#: estimated error 0.31 Pa) and on a grid of twice the density with a 4x tighter diffusion
 #: tolerance (421152.12 Pa)
 SA_PULL_OFF = 421152.12
 #: uncertainty of both references [Pa]: the spread of the seed's values above, about
