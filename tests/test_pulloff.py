@@ -18,7 +18,7 @@ SEED_PULL_OFF = 776369.3
 SA = pf.SelfAffine(hurst=0.8, q0=1e5, q1=1e8, h_rms=2e-8)
 SA_E_STAR = 1e9
 SA_DGAMMA = 0.05
-#: its pull-off stress [Pa]: pull_off at rtol = 1e-6 on its default grid (421152.11 Pa,
+#: its pull-off stress [Pa]: pull_off at rtol = 1e-6 on its default grid (421152.10 Pa,
 #: estimated error 0.31 Pa) and on a grid of twice the density with a 4x tighter diffusion
 #: tolerance (421152.12 Pa)
 SA_PULL_OFF = 421152.12
