@@ -41,7 +41,7 @@ import numpy as np
 from .._jit import njit_serial
 from . import status as st
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf, ndtr
-from .tridiag import fitted_diffusion, theta_step
+from .tridiag import fitted_diffusion, theta_step, theta_workspace
 
 # --- constants of the scheme (dimensionless, y0 = 1) ------------------------------------
 C_START = 0.25        # latest start G_s = C_START * y0^2: start std = 0.71 y0
@@ -759,14 +759,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
     nf1 = n_f + 1
     p = np.empty(nf1)
     tmp = np.empty(nf1)
-    lo = np.empty(nf1)
-    di = np.empty(nf1)
-    up = np.empty(nf1)
-    a_lo = np.empty(nf1)
-    a_di = np.empty(nf1)
-    a_up = np.empty(nf1)
-    rhs = np.empty(nf1)
-    scratch = np.empty(nf1)
+    lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(nf1)
     ca = np.empty(nt + 1)
     cl = np.empty(nt + 1)
     cd = np.empty(nt + 1)

@@ -111,7 +111,7 @@ from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
 from .diffusion import boundary_at, fill_state, wall_far_limit
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf
-from .tridiag import thomas
+from .tridiag import theta_workspace, thomas
 
 # --- constants of the scheme (dimensionless, y0 = 1) ------------------------------------
 K_DOMAIN = 6.0        # grid eta in [-K, K]; free variance in eta < 1/2: tail < 1e-16
@@ -646,14 +646,7 @@ def solve_fixedgrid_detail(G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
     nb1 = n_b + 1
     p = np.empty(nb1)
     ext = np.empty(nb1)
-    lo = np.empty(nb1)
-    di = np.empty(nb1)
-    up = np.empty(nb1)
-    a_lo = np.empty(nb1)
-    a_di = np.empty(nb1)
-    a_up = np.empty(nb1)
-    rhs = np.empty(nb1)
-    scratch = np.empty(nb1)
+    lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(nb1)
     ca = np.empty(nt + 1)
     cl = np.empty(nt + 1)
     cd = np.empty(nt + 1)

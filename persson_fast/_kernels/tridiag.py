@@ -3,7 +3,17 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .._jit import njit_serial
+
+
+@njit_serial
+def theta_workspace(n):
+    """The (n,) work arrays of a theta step (:func:`theta_step`, and the fixed-grid step):
+    lo, di, up, a_lo, a_di, a_up, rhs, scratch."""
+    return (np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
+            np.empty(n), np.empty(n))
 
 
 @njit_serial
