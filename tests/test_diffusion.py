@@ -44,16 +44,23 @@ def test_images_through_solve_contact_cn(ratio):
 
 
 # --- exact oracle: a wall moving linearly in G ------------------------------------------
-@pytest.mark.parametrize("scale", [1.0, 1e4, 1e8])
-@pytest.mark.parametrize("b_scaled", [-1.0, -0.3, 0.3, 1.0, 3.0, 20.0])
-def test_linear_wall(scale, b_scaled):
-    sigma0, a = scale, 0.2 * scale
+def linear_wall_case(scale, b_scaled, a_frac, g_lo, g_hi, n):
+    """sigma0 = scale, wall a + b G (a = a_frac scale, b y0 = b_scaled), G/y0^2 log-spaced
+    from g_lo to g_hi plus 0; returns (sigma0, a, b, G, sa, cn result)."""
+    sigma0, a = scale, a_frac * scale
     y0 = sigma0 + a
     b = b_scaled / y0
-    G = np.concatenate([[0.0], np.geomspace(1e-2, 10.0, 40) * y0**2])
+    G = np.concatenate([[0.0], np.geomspace(g_lo, g_hi, n) * y0**2])
     sa = a + b * G
     r = pf.solve_diffusion(G, sigma0, sa, method="cn")
     assert r.success, r.message
+    return sigma0, a, b, G, sa, r
+
+
+@pytest.mark.parametrize("scale", [1.0, 1e4, 1e8])
+@pytest.mark.parametrize("b_scaled", [-1.0, -0.3, 0.3, 1.0, 3.0, 20.0])
+def test_linear_wall(scale, b_scaled):
+    sigma0, a, b, G, sa, r = linear_wall_case(scale, b_scaled, 0.2, 1e-2, 10.0, 40)
     exact = pf.linear_boundary_area(sigma0, G, a, b)
     assert within(r.area[0], exact) < 1
     assert np.max(np.abs(r.area + r.detached_area - 1)) < IDENTITY
@@ -66,13 +73,7 @@ def test_linear_wall(scale, b_scaled):
 @pytest.mark.parametrize("scale", [1.0, 1e9])
 @pytest.mark.parametrize("b_scaled", [-0.3, 0.3])
 def test_linear_wall_eight_decades(scale, b_scaled):
-    sigma0, a = scale, 0.1 * scale
-    y0 = sigma0 + a
-    b = b_scaled / y0
-    G = np.concatenate([[0.0], np.geomspace(1e-6, 1e2, 41) * y0**2])
-    sa = a + b * G
-    r = pf.solve_diffusion(G, sigma0, sa, method="cn")
-    assert r.success, r.message
+    sigma0, a, b, G, _, r = linear_wall_case(scale, b_scaled, 0.1, 1e-6, 1e2, 41)
     assert within(r.area[0], pf.linear_boundary_area(sigma0, G, a, b)) < 1
     assert np.max(np.abs(r.area + r.detached_area - 1)) < IDENTITY
 
