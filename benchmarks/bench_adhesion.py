@@ -8,16 +8,17 @@ import pytest
 
 import persson_fast as pf
 
-SEED_E_STAR = 2.9e9 / (1 - 0.3**2)
+SEED_E_STAR = pf.seed_e_star()
+DGAMMA = pf.SEED_WORK_OF_ADHESION
 PRESSURES = np.linspace(0.0, 100e6, 128)
 
 
 @pytest.fixture(scope="module", autouse=True)
 def _warm():
     pf.warmup()
-    pf.solve_contact(pf.seed_scene(), PRESSURES[:8], e_star=SEED_E_STAR, work_of_adhesion=0.06,
+    pf.solve_contact(pf.seed_scene(), PRESSURES[:8], e_star=SEED_E_STAR, work_of_adhesion=DGAMMA,
                      rtol=1e-2, parallel=False)
-    pf.solve_contact(pf.seed_scene(), PRESSURES[:8], e_star=SEED_E_STAR, work_of_adhesion=0.06,
+    pf.solve_contact(pf.seed_scene(), PRESSURES[:8], e_star=SEED_E_STAR, work_of_adhesion=DGAMMA,
                      rtol=1e-2, parallel=True)
 
 
@@ -27,7 +28,7 @@ def test_seed_adhesion_128(benchmark, rtol, parallel):
     surface = pf.seed_scene()
     benchmark.group = f"seed adhesion 128 pressures rtol={rtol:g}"
     result = benchmark(pf.solve_contact, surface, PRESSURES, e_star=SEED_E_STAR,
-                       work_of_adhesion=0.06, rtol=rtol, parallel=parallel)
+                       work_of_adhesion=DGAMMA, rtol=rtol, parallel=parallel)
     assert result.success, result.message
     benchmark.extra_info["pressures"] = PRESSURES.size
     benchmark.extra_info["iterations_per_pressure_mean"] = float(result.iterations.mean())

@@ -19,17 +19,18 @@ import pytest
 import persson_fast as pf
 from persson_fast.adhesion import adhesion_zeta, solve_adhesive_contact
 
-SEED_E_STAR = 2.9e9 / (1 - 0.3**2)
-DGAMMA = 0.06
+SEED_E_STAR = pf.seed_e_star()
+DGAMMA = pf.SEED_WORK_OF_ADHESION
 RTOL = 1e-4
 PRESSURES = np.linspace(0.0, 100e6, 32)
+SURFACE = pf.seed_scene()
+ZETA = adhesion_zeta(SURFACE, RTOL)
 
 
 def _solve(p, dg=DGAMMA, start=None, controls=None):
-    surface = pf.seed_scene()
-    return solve_adhesive_contact(surface, p, adhesion_zeta(surface, RTOL), e_star=SEED_E_STAR,
-                                  work_of_adhesion=dg, rtol=RTOL, parallel=False,
-                                  controls=controls, zeta_given=True, start=start)
+    return solve_adhesive_contact(SURFACE, p, ZETA, e_star=SEED_E_STAR, work_of_adhesion=dg,
+                                  rtol=RTOL, parallel=False, controls=controls,
+                                  zeta_given=True, start=start)
 
 
 def anderson():

@@ -10,14 +10,15 @@ import pytest
 
 import persson_fast as pf
 
-SEED_E_STAR = 2.9e9 / (1 - 0.3**2)
+SEED_E_STAR = pf.seed_e_star()
+DGAMMA = pf.SEED_WORK_OF_ADHESION
 #: reference pull-off stress of the seed scene [Pa] (how it was obtained: tests/test_pulloff.py)
 SEED_PULL_OFF = 776369.3
 
 
 @pytest.fixture(scope="module", autouse=True)
 def _warm():
-    pf.pull_off(pf.seed_scene(), e_star=SEED_E_STAR, work_of_adhesion=0.06, rtol=1e-2)
+    pf.pull_off(pf.seed_scene(), e_star=SEED_E_STAR, work_of_adhesion=DGAMMA, rtol=1e-2)
 
 
 @pytest.mark.parametrize("rtol", [1e-3, 1e-4, pytest.param(1e-5, marks=pytest.mark.slow),
@@ -27,7 +28,7 @@ def test_seed_pull_off(benchmark, rtol):
     rounds = 3 if rtol >= 1e-4 else 1
     sigma_c, info = benchmark.pedantic(
         pf.pull_off, args=(pf.seed_scene(),),
-        kwargs={"e_star": SEED_E_STAR, "work_of_adhesion": 0.06, "rtol": rtol,
+        kwargs={"e_star": SEED_E_STAR, "work_of_adhesion": DGAMMA, "rtol": rtol,
                 "full_output": True, "bracket": False},
         rounds=rounds, iterations=1)
     assert info["converged"], info["error_parts"]

@@ -16,11 +16,6 @@ import persson_fast as pf
 
 __all__ = ["Case", "CaseInputs", "CASES", "CASE_BY_NAME", "get_case", "sqrt_g1"]
 
-#: Young's modulus of the seed's PMMA [Pa] and the Poisson ratio the package assumes for it [-]
-SEED_YOUNG_MODULUS = 2.9e9
-SEED_POISSON = 0.3
-
-
 def sqrt_g1(surface, e_star: float) -> float:
     """sqrt(G1) = E* slope_rms / (2 sqrt 2), the stress scale of a full band. [Pa]"""
     return e_star * surface.slope_rms() / (2.0 * math.sqrt(2.0))
@@ -100,7 +95,7 @@ CASES: list[Case] = [
         description="seed PMMA scene (capillary waves), E*=2.9 GPa/(1-0.3^2), "
                     "128 pressures 0..100 MPa, no adhesion",
         make_surface=pf.seed_scene,
-        e_star=SEED_YOUNG_MODULUS / (1.0 - SEED_POISSON**2),
+        e_star=pf.seed_e_star(),
         make_pressures=_linear_pressures(128, 100e6),
     ),
     Case(

@@ -42,7 +42,7 @@ warm = pf.warmup()
 surface = pf.seed_scene()
 p = np.linspace(0.0, 100e6, 128)
 t0 = time.perf_counter()
-res = pf.solve_contact(surface, p, e_star=2.9e9 / (1 - 0.09), method="cn")
+res = pf.solve_contact(surface, p, e_star=pf.seed_e_star(), method="cn")
 t_first = time.perf_counter() - t0
 print(json.dumps({
     "import": t_import,

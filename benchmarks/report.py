@@ -51,7 +51,6 @@ PRESSURES_EXACT = np.array([0.3, 1.0, 3.0]) * MPA
 WALLS = {"images": (0.0, 0.0), "moving-wall": (0.5 * MPA, 0.05 / MPA)}
 #: the adhesive scene
 SEED_PRESSURES = np.array([0.0, 1e7, 1e8])
-SEED_WORK_OF_ADHESION = 0.06
 #: tolerances of the "auto" table
 RTOLS = (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
 RTOLS_ADHESIVE = {"cn": (1e-2, 1e-3, 1e-4, 1e-5, 1e-6), "cn-plain": (1e-2, 1e-3, 1e-4, 1e-5),
@@ -139,11 +138,9 @@ def run_exact_scene(scene, levels, baseline_nodes, log):
 
 def run_adhesive_scene(rtols, ref_rtol, log):
     """Rows of the seed's adhesive scene (each grid method over a tolerance ladder)."""
-    from persson_fast.cli import SEED_POISSON_DEFAULT, SEED_YOUNG_MODULUS
-
     surface = pf.seed_scene()
-    e_star = SEED_YOUNG_MODULUS / (1.0 - SEED_POISSON_DEFAULT**2)
-    kw = dict(e_star=e_star, work_of_adhesion=SEED_WORK_OF_ADHESION, parallel=False)
+    kw = dict(e_star=pf.seed_e_star(), work_of_adhesion=pf.SEED_WORK_OF_ADHESION,
+              parallel=False)
     t0 = time.perf_counter()
     ref = pf.solve_contact(surface, SEED_PRESSURES, method="cn", rtol=ref_rtol, **kw)
     ref2 = pf.solve_contact(surface, SEED_PRESSURES, method="cn", rtol=10 * ref_rtol, **kw)

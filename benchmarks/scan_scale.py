@@ -32,8 +32,9 @@ import numpy as np
 import persson_fast as pf
 from persson_fast.scan import scan
 
-#: Young's modulus and Poisson ratio of the seed's PMMA [Pa], [-]
-E_STAR = 2.9e9 / (1.0 - 0.3**2)
+#: E* of the seed's PMMA [Pa] and its work of adhesion [J/m^2]
+E_STAR = pf.seed_e_star()
+DGAMMA = pf.SEED_WORK_OF_ADHESION
 
 
 def _timed(func, *args, **kwargs):
@@ -71,7 +72,7 @@ def strategy(quick: bool, repeat: int) -> dict:
     are reported (on a shared machine the minimum is the least disturbed figure).
     """
     n = 6 if quick else 20
-    adh = dict(surface=pf.CapillaryWaves, e_star=E_STAR, work_of_adhesion=0.06, rtol=1e-4)
+    adh = dict(surface=pf.CapillaryWaves, e_star=E_STAR, work_of_adhesion=DGAMMA, rtol=1e-4)
     cases = {
         f"cn, {n} scenes x 100 pressures": dict(
             surface=pf.SelfAffine, params=_self_affine_grid(n // 2, 2),
@@ -114,7 +115,7 @@ def scale(quick: bool) -> dict:
     out[f"no adhesion, cn, {ds.area.size} points"] = t
     n_adh = 3 if quick else 10
     t, ds = _timed(scan, pf.CapillaryWaves, _seed_adhesion_grid(n_adh),
-                   np.linspace(-0.5e6, 50e6, 100), e_star=E_STAR, work_of_adhesion=0.06,
+                   np.linspace(-0.5e6, 50e6, 100), e_star=E_STAR, work_of_adhesion=DGAMMA,
                    rtol=1e-4, progress=False)
     out[f"adhesion rtol 1e-4, {ds.area.size} points"] = t
     out["adhesion points flagged (status != 0)"] = int((ds.status != 0).sum())

@@ -27,7 +27,7 @@ import numpy as np
 
 from .methods import METHODS
 from .surfaces import SEED_POISSON as SEED_POISSON_DEFAULT
-from .surfaces import SEED_WORK_OF_ADHESION, SEED_YOUNG_MODULUS
+from .surfaces import SEED_WORK_OF_ADHESION, SEED_YOUNG_MODULUS, seed_e_star
 
 __all__ = ["main", "build_parser"]
 
@@ -153,7 +153,7 @@ def _cmd_figure2(args) -> int:
         raise CommandError(f"--poisson must lie in (-1, 0.5] [-]; got {nu!r}")
     if args.points < 2:
         raise CommandError(f"--points must be >= 2; got {args.points}")
-    e_star = SEED_YOUNG_MODULUS / (1.0 - nu * nu)
+    e_star = seed_e_star(nu)
     surface = pf.seed_scene()
     pressure = np.linspace(0.0, SEED_P_MAX, int(args.points))
 
