@@ -339,6 +339,10 @@ class _Branch:
                           np.empty(n), x)
         return x
 
+    def inner_rtol(self, rtol, x):
+        """Diffusion tolerance of a branch point at target ``rtol`` near the profile ``x``."""
+        return _inner_rtol(rtol, (x[0] / self.c[0]) ** 2)
+
     def evaluate(self, x, sigma0, rtol):
         """F(x): diffuse against the wall x at nominal stress sigma0 (scaled), then Eqs. 8-9."""
         area, load, det_a, det_l, err = self._out
@@ -361,7 +365,7 @@ class _Branch:
         w = 1.0 / self.c
         x = np.maximum(np.array(x_start, dtype=float), 0.0)
         tol = max(PULL_OFF_RESIDUAL * rtol, 1e-13)
-        inner = _inner_rtol(rtol, (x[0] / self.c[0]) ** 2)
+        inner = self.inner_rtol(rtol, x)
         res = np.inf
         best = best_mark = np.inf
         x_best = f_best = None
@@ -892,8 +896,8 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     # error of the inner (diffusion) solves: re-solve the coarsest grid's end point with a
     # tighter tolerance (the inner error taken as linear in it), or, at the floor, a looser
     # one (the whole difference charged)
-    g_end = (best["x"][0] / b0.c[0]) ** 2
-    tighter = _inner_rtol(rtol / PULL_OFF_INNER_CHECK, g_end) < _inner_rtol(rtol, g_end)
+    tighter = (b0.inner_rtol(rtol / PULL_OFF_INNER_CHECK, best["x"])
+               < b0.inner_rtol(rtol, best["x"]))
     r_check = rtol / PULL_OFF_INNER_CHECK if tighter else rtol * PULL_OFF_INNER_CHECK
     check = b0.point(best["y0"], best["x"], r_check, m_hist=ctl["m_hist"], omega=ctl["omega"],
                      trust=PULL_OFF_TRUST, max_iter=ctl["max_iter"])
