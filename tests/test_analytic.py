@@ -86,8 +86,8 @@ def ref_linear_density(s, p, G, a, b):
         y0 = p + a
         y = s + a + b * G
     with mp.workdps(_extra_digits(y * y0 / G) + 20):
-        if y < 0:
-            return mp.mpf(0)
+        if y <= 0:  # on or behind the absorbing wall P = 0 exactly; at y = 0 the two terms
+            return mp.mpf(0)  # cancel completely and any finite precision leaves only noise
         v = 2 * G
         norm = lambda x: mp.exp(-x * x / (2 * v)) / mp.sqrt(2 * mp.pi * v)  # noqa: E731
         return +(norm(y - y0 - b * G) - mp.exp(-b * y0) * norm(y + y0 - b * G))
