@@ -17,7 +17,7 @@ from .analytic import (
 )
 from .adhesion import adhesion_zeta, pull_off
 from .api import default_zeta, solve_contact, solve_diffusion
-from .methods import METHODS
+from .methods import AUTO_POLICY, METHODS
 from .results import ContactResult, DiffusionResult
 from .surfaces import (
     BOLTZMANN,
@@ -37,6 +37,7 @@ from .sweep import warmup
 __version__ = "0.1.0"
 
 __all__ = [
+    "AUTO_POLICY",
     "BOLTZMANN",
     "SEED_POISSON",
     "SEED_WORK_OF_ADHESION",

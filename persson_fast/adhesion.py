@@ -183,6 +183,18 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     ctl = _controls(controls)
     if not zeta_given:
         zeta = adhesion_zeta(surface, rtol)
+    if p.size == 0:
+        # no pressure, nothing to solve: an empty result on the grid, as without adhesion
+        G_dim = _scene_arrays(surface, zeta, e_star, work_of_adhesion, detachment_prefactor)[5]
+        none, rows = np.zeros(0), np.zeros((0, zeta.size))
+        return ContactResult(
+            pressure=p, area=none, zeta=zeta, G=G_dim, area_zeta=rows, sigma_a=rows,
+            gamma_eff=rows, load=none, mean_contact_pressure=none, mean_contact_stress=none,
+            detached_area=none, detached_load=none, error_estimate=none, method=method,
+            status=np.zeros(0, dtype=np.int64), success=True, message="ok", timings={},
+            elastic_energy=rows, iterations=np.zeros(0, dtype=np.int64), residual=none,
+            sticky=np.zeros(0, dtype=bool), load_zeta=rows, detached_load_zeta=rows,
+            zeta_error=none)
     gamma_s = -1.0 if energy_correction is None else float(energy_correction)
     # the fixed point on two nested grids, Richardson-extrapolated at the coarse nodes; the
     # fine grid starts from the coarse solution (interpolated in ln zeta)
@@ -705,8 +717,9 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
         Relative accuracy of sigma_c. [-]
     zeta : array_like, optional
         The coarsest of the nested magnification grids; the others are its refinements
-        (:func:`refine_zeta`). Default: :func:`adhesion_zeta` at ``rtol`` with its points
-        near zeta = 1 extended down to :func:`_near_one_min`. [-]
+        (:func:`refine_zeta`); from 1 to zeta1 = q1/q0, as in
+        :func:`persson_fast.solve_contact`. Default: :func:`adhesion_zeta` at ``rtol`` with
+        its points near zeta = 1 extended down to :func:`_near_one_min`. [-]
     controls : dict, optional
         Fixed-point controls (see :data:`ADHESION_DEFAULTS`); ``max_iter`` defaults to
         ``PULL_OFF_MAX_ITER`` here.

@@ -17,6 +17,7 @@ from ._validation import (
 from .adhesion import solve_adhesive_contact
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
+from .surfaces import check_e_star
 from .sweep import run_sweep
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
@@ -212,7 +213,19 @@ def default_zeta(surface, per_decade: int = ZETA_PER_DECADE) -> np.ndarray:
     return z
 
 
+#: relative distance from zeta1 = q1/q0 within which the last point of a user zeta grid is
+#: taken as zeta1 (and set to it exactly)
+ZETA1_RTOL = 1e-12
+
+
 def _check_zeta(zeta, surface) -> np.ndarray:
+    """A user zeta grid: starts at 1, increasing, and ends at zeta1 = q1/q0.
+
+    ``area`` is A(zeta1)/A0 by definition, and with adhesion the grid is the discretisation
+    of the fixed point, whose Eq. 9 needs the profile up to zeta1: a grid that stops short
+    of zeta1 (or goes beyond it) is refused, not silently extended. A last point within a
+    relative ``ZETA1_RTOL`` of zeta1 is set to zeta1 exactly (``np.logspace`` rounding).
+    """
     if zeta is None:
         return default_zeta(surface)
     z = as_float_array(zeta, "zeta", "-", ndim=(1,))
@@ -220,21 +233,35 @@ def _check_zeta(zeta, surface) -> np.ndarray:
     zeta1 = surface.q1 / surface.q0
     if z.size < 1 or z[0] != 1.0:
         raise ValueError(f"zeta must start at 1 [-]; got zeta[0] = {z[0].item() if z.size else None!r}")
-    bad = (z < 1.0) | (z > zeta1 * (1 + 1e-12))
+    bad = (z < 1.0) | (z > zeta1 * (1 + ZETA1_RTOL))
     if np.any(bad):
         i = int(np.argmax(bad))
         raise ValueError(f"zeta must lie in [1, q1/q0 = {float(zeta1)!r}] [-]; got zeta[{i}] = {z[i].item()!r}")
     if np.any(np.diff(z) <= 0):
         i = int(np.argmax(np.diff(z) <= 0))
         raise ValueError(f"zeta must be increasing [-]; got zeta[{i}] = {z[i].item()!r} >= zeta[{i + 1}] = {z[i + 1].item()!r}")
+    n = z.size
+    if n < 2 or abs(z[-1] - zeta1) > ZETA1_RTOL * zeta1:
+        raise ValueError(
+            f"zeta must end at zeta1 = q1/q0 = {float(zeta1)!r} (within a relative "
+            f"{ZETA1_RTOL:g}) [-]: result.area is A(zeta1)/A0, and with adhesion the grid "
+            f"is that of the fixed point; got zeta[{n - 1}] = {z[-1].item()!r}. Append "
+            f"q1/q0 (np.append(zeta, surface.q1 / surface.q0)) or pass zeta=None")
+    z = z.copy()
+    z[-1] = zeta1
     return z
 
 
 def _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
                       energy_correction):
-    """Validate the scene arguments shared by solve_contact and pull_off; return floats."""
-    e = as_float_array(e_star, "e_star", "Pa", ndim=(0,))
-    check_positive(e, "e_star", "Pa")
+    """Validate the scene arguments shared by solve_contact and pull_off; return floats.
+
+    Besides each argument's own rule, the scene must stay finite in float64: G(q1) (e_star
+    with the surface) and, with adhesion, the detachment stress scale beta (dgamma E* q1)^(1/2)
+    and U_el(1)/dgamma (work_of_adhesion) -- a non-finite one would come back as a silent A.
+    An e_star below ``E_STAR_WARN_BELOW`` (1e5 Pa) warns: a modulus in GPa where Pa is meant.
+    """
+    e = check_e_star(e_star)
     dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
     check_nonnegative(dg, "work_of_adhesion", "J/m^2")
     beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
@@ -249,7 +276,35 @@ def _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
     for attr in ("q0", "q1", "diffusion_time", "breakpoints"):
         if not hasattr(surface, attr):
             raise ValueError(f"surface must be a persson_fast surface model; {type(surface).__name__} has no {attr!r}")
-    return float(e), float(dg), float(beta)
+    dg, beta = float(dg), float(beta)
+    _check_scene_finite(surface, e, dg, beta)
+    return e, dg, beta
+
+
+def _check_scene_finite(surface, e: float, dg: float, beta: float) -> None:
+    """Refuse an e_star / work_of_adhesion for which the scene overflows float64 (see
+    :func:`_check_scene_args`); G(zeta) <= G(q1), sigma_a(zeta) <= its value at q1 and the
+    U_el quadrature weights <= U_el(1)/dgamma, so the full-band values bound the grid's."""
+    with np.errstate(all="ignore"):
+        G1 = float(np.asarray(surface.diffusion_time(surface.q1, e), dtype=float))
+    if not np.isfinite(G1):
+        raise ValueError(f"e_star must keep the diffusion time G(q1) of the surface finite [Pa]; "
+                         f"got e_star = {e!r}, which gives G(q1) = {G1!r} [Pa^2]")
+    if dg == 0.0:
+        return
+    with np.errstate(all="ignore"):
+        c1_squared = beta * beta * dg * e * float(surface.q1)
+        u_per_dg = (0.5 * np.pi * e / dg) * float(surface.moment(2)) if hasattr(
+            surface, "moment") else 0.0
+    for what, value, unit in (
+            ("sigma_a(q1)^2 = (beta^2 work_of_adhesion e_star q1)", c1_squared, "Pa^2"),
+            ("U_el(zeta = 1)/work_of_adhesion = (pi e_star/2) int q^2 C dq/work_of_adhesion",
+             u_per_dg, "-")):
+        if not np.isfinite(value):
+            raise ValueError(
+                f"work_of_adhesion [J/m^2], e_star [Pa] and detachment_prefactor [-] must keep "
+                f"{what} finite; got work_of_adhesion = {dg!r}, e_star = {e!r}, "
+                f"detachment_prefactor = {beta!r}, which give {float(value)!r} [{unit}]")
 
 
 #: tolerance bounds of the pull-off check of separated tensions in solve_contact
@@ -306,7 +361,10 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     pressure : float or array_like, shape (n_p,)
         Nominal pressure p_nom = F_N / A0, >= 0 without adhesion. [Pa]
     e_star : float
-        Effective modulus E* = E / (1 - nu^2) > 0. [Pa]
+        Effective modulus E* = E / (1 - nu^2) > 0, in Pa (1 GPa is 1e9). Below 1e5 Pa
+        (``persson_fast.surfaces.E_STAR_WARN_BELOW``) a UserWarning says so; a value for
+        which G(q1) (or, with adhesion, the detachment stress or U_el/Delta gamma)
+        overflows float64 raises a ValueError. [Pa]
     work_of_adhesion : float
         Delta gamma >= 0. [J/m^2]  (0: no adhesion.)
     energy_correction : float or None
@@ -320,8 +378,13 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     rtol : float
         Target relative accuracy of the area. [-]
     zeta : array_like or None
-        Magnifications of the returned profiles, starting at 1 (default: 8 per decade plus the
-        spectrum's breakpoints). [-]
+        Magnifications of the returned profiles (with adhesion also the grid of the fixed
+        point, which sets its accuracy): increasing, from 1 to zeta1 = q1/q0. It must end
+        at zeta1 (a last point within a relative 1e-12 is set to zeta1 exactly), so that
+        ``result.area`` is always A(zeta1)/A0; a grid that stops short of zeta1 or goes
+        beyond it raises a ValueError (append ``surface.q1 / surface.q0``). Default: 8 per
+        decade plus the spectrum's breakpoints (without adhesion),
+        :func:`persson_fast.adhesion_zeta` (with it). [-]
     parallel : bool or None
         Spread pressures over threads. None: when the parallel kernel is compiled (it is not
         cached on disk; ``pf.warmup()`` compiles it, ~4 s) and there are >= 4 pressures, or

@@ -22,6 +22,32 @@ def summarize_status(status: np.ndarray) -> tuple[bool, str]:
     return False, "; ".join(parts)
 
 
+def _span(x, unit: str = "") -> str:
+    """'n values in [lo, hi] unit' of an array (finite values only), for the short reprs."""
+    x = np.asarray(x, dtype=float)
+    n = x.size
+    finite = x[np.isfinite(x)]
+    unit = f" {unit}" if unit else ""
+    if finite.size == 0:
+        return f"{n} values" if n != 1 else "1 value"
+    lo, hi = float(finite.min()), float(finite.max())
+    if n == 1:
+        return f"1 value, {lo:.6g}{unit}"
+    rng = f"{lo:.6g}{unit}" if lo == hi else f"[{lo:.6g}, {hi:.6g}]{unit}"
+    return f"{n} values in {rng}"
+
+
+def _largest(x) -> float:
+    """Largest finite value of an array (0 when there is none), for the short reprs."""
+    x = np.asarray(x, dtype=float)
+    finite = x[np.isfinite(x)]
+    return float(finite.max()) if finite.size else 0.0
+
+
+def _timings(timings: dict) -> str:
+    return ", ".join(f"{k} {v:.3g} s" for k, v in timings.items()) or "none"
+
+
 def per_contact_area(x, area):
     """x / area where there is contact, nan where A = 0 (mean stresses in the contact)."""
     x = np.asarray(x, dtype=float)
@@ -30,9 +56,11 @@ def per_contact_area(x, area):
     return np.where(area > 0, x / safe, np.nan)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class DiffusionResult:
     """Result of :func:`persson_fast.solve_diffusion`.
+
+    ``repr`` (and ``print``) show a short summary; the arrays are the attributes below.
 
     Attributes
     ----------
@@ -67,23 +95,39 @@ class DiffusionResult:
     timings: dict = field(default_factory=dict)
     counts: np.ndarray | None = None
 
+    def __repr__(self) -> str:
+        """A few lines (method, shapes, status, ranges), not every array."""
+        n_p, n_t = np.shape(self.area) if np.ndim(self.area) == 2 else (0, 0)
+        end = np.asarray(self.area)[:, -1] if n_p and n_t else np.zeros(0)
+        return (
+            f"<DiffusionResult: method={self.method!r}, success={self.success}, "
+            f"message={self.message!r}\n"
+            f"  pressure        {_span(self.pressure, 'Pa')}\n"
+            f"  G               {_span(self.G, 'Pa^2')}\n"
+            f"  area            shape ({n_p}, {n_t}); A(G[-1])/A0: {_span(end)}\n"
+            f"  error_estimate  max {_largest(self.error_estimate):.3g}; "
+            f"timings: {_timings(self.timings)}>"
+        )
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, repr=False)
 class ContactResult:
     """Result of :func:`persson_fast.solve_contact` (one scene, many pressures).
+
+    ``repr`` (and ``print``) show a short summary; the arrays are the attributes below.
 
     Attributes
     ----------
     pressure : (n_p,) -- nominal pressures. [Pa]
     area : (n_p,) -- A(zeta1)/A0, the relative real contact area. [-]
-    zeta : (n_z,) -- magnifications of the profiles; zeta[0] == 1. [-]
+    zeta : (n_z,) -- magnifications of the profiles; zeta[0] == 1, zeta[-1] == q1/q0. [-]
     G : (n_z,) -- diffusion time G(zeta). [Pa^2]
     area_zeta : (n_p, n_z) -- A(zeta)/A0. [-]
     sigma_a : (n_p, n_z) -- detachment stress sigma_a(zeta) (zeros without adhesion). [Pa]
     gamma_eff : (n_p, n_z) -- effective interfacial energy (zeros without adhesion). [J/m^2]
     load : (n_p,) -- load carried in contact at zeta1. [Pa]
     mean_contact_pressure : (n_p,) -- p_nom A0 / A, the mean stress in the contact by force
-        balance (THEORY section 6; nan where A = 0). [Pa]
+        balance, F_N = p_nom A0 carried by the real contact area A (nan where A = 0). [Pa]
     detached_area, detached_load : (n_p,) -- bookkeeping at zeta1. [-], [Pa]
     error_estimate : (n_p,) -- estimate of the absolute error of ``area``. With adhesion it
         is an upper estimate: the error of the finer of the two zeta grids (and inner
@@ -128,3 +172,25 @@ class ContactResult:
     detached_load_zeta: np.ndarray | None = None
     zeta_error: np.ndarray | None = None
     mean_contact_stress: np.ndarray | None = None
+
+    def __repr__(self) -> str:
+        """A few lines (method, shapes, status, ranges), not every array."""
+        n_p, n_z = np.size(self.pressure), np.size(self.zeta)
+        lines = [
+            f"<ContactResult: method={self.method!r}, success={self.success}, "
+            f"message={self.message!r}",
+            f"  pressure        {_span(self.pressure, 'Pa')}",
+            f"  zeta            {_span(self.zeta)} (profiles area_zeta, sigma_a, "
+            f"gamma_eff: ({n_p}, {n_z}))",
+            f"  area            A(zeta1)/A0: {_span(self.area)}",
+        ]
+        if self.iterations is not None:          # the adhesive solver's extra fields
+            sticky = int(np.count_nonzero(self.sticky)) if self.sticky is not None else 0
+            sa1 = np.asarray(self.sigma_a)[:, 0] if n_p and n_z else np.zeros(0)
+            residual = self.residual if self.residual is not None else np.zeros(0)
+            lines.append(f"  sigma_a(zeta=1) {_span(sa1, 'Pa')}; sticky at {sticky} of {n_p}")
+            lines.append(f"  fixed point     iterations max {_largest(self.iterations):.0f}; "
+                         f"residual max {_largest(residual):.3g}")
+        lines.append(f"  error_estimate  max {_largest(self.error_estimate):.3g}; "
+                     f"timings: {_timings(self.timings)}>")
+        return "\n".join(lines)

@@ -33,6 +33,9 @@ from __future__ import annotations
 
 import abc
 import math
+import os
+import sys
+import warnings
 
 import numpy as np
 
@@ -40,6 +43,8 @@ from ._validation import as_float_array, check_choice, check_finite, check_nonne
 
 __all__ = [
     "BOLTZMANN",
+    "E_STAR_WARN_BELOW",
+    "RmsValue",
     "Surface",
     "CapillaryWaves",
     "SelfAffine",
@@ -49,6 +54,38 @@ __all__ = [
 
 #: Boltzmann constant (exact, SI 2019) [J/K].
 BOLTZMANN = 1.380649e-23
+
+#: an effective modulus below this draws a UserWarning: it is most likely a modulus typed in
+#: GPa or MPa where Pa is meant (``e_star=1.0`` for 1 GPa gives A = 1 at any pressure). Soft
+#: gels (~1e3-1e4 Pa) warn too; ``warnings.filterwarnings("ignore", "e_star")`` silences it. [Pa]
+E_STAR_WARN_BELOW = 1e5
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+
+
+def _user_stacklevel() -> int:
+    """``stacklevel`` for ``warnings.warn`` in the caller that points at the first frame
+    outside this package (the user's line), so that one call warns once under the default
+    filter even when several layers check the same argument."""
+    frame = sys._getframe(2)          # the caller of the function that warns: stacklevel 2
+    level = 2
+    while frame is not None and frame.f_code.co_filename.startswith(_PACKAGE_DIR):
+        frame = frame.f_back
+        level += 1
+    return level
+
+
+def check_e_star(e_star) -> float:
+    """``e_star`` as a float: finite and > 0 (else a ValueError); a UserWarning below
+    :data:`E_STAR_WARN_BELOW` (a modulus in GPa or MPa where Pa is meant). [Pa]"""
+    e = _positive_scalar(e_star, "e_star", "Pa")
+    if e < E_STAR_WARN_BELOW:
+        warnings.warn(
+            f"e_star = {e!r} Pa is below {E_STAR_WARN_BELOW:g} Pa, softer than any rubber: "
+            f"e_star is in Pa (E* = 1 GPa is e_star=1e9, not 1.0); with so soft a solid the "
+            f"contact is nearly complete at any pressure",
+            UserWarning, stacklevel=_user_stacklevel())
+    return e
 
 _MOMENT_ORDERS = (0, 1, 2, 3)
 
@@ -199,12 +236,30 @@ def _gauss_legendre_log(integrand_t, a: np.ndarray, b: np.ndarray) -> np.ndarray
 # ----------------------------------------------------------------------------------------------
 # the base class
 # ----------------------------------------------------------------------------------------------
+class RmsValue(float):
+    """A float that may also be called: ``s.h_rms`` and ``s.h_rms()`` are the same number.
+
+    :attr:`Surface.h_rms` and :attr:`Surface.slope_rms` return it, so that the attribute form
+    (as the constructor's ``h_rms=``) and the call form of earlier versions both work.
+    Arithmetic on it gives plain floats; calling it returns a plain float.
+    """
+
+    __slots__ = ()
+
+    def __call__(self) -> float:
+        return float(self)
+
+
 class Surface(abc.ABC):
     """Isotropic rough surface described by its power spectrum C(q), zero outside [q0, q1].
 
     Subclasses provide C(q) inside the band and the exact partial moments
     :math:`\\int_a^b q^k C(q) dq`; everything else (rms height and slope, the diffusion time
-    G(q), the full-contact elastic energy) is derived here from those moments.
+    G(q), the full-contact elastic energy) is derived here from those moments. Constructors
+    refuse parameters whose full-band moments are not finite in float64, naming them.
+
+    ``h_rms`` and ``slope_rms`` are properties whose value (a :class:`RmsValue`) is a float
+    that may also be called: ``s.h_rms * 1e9`` and ``s.h_rms()`` both work.
 
     Attributes
     ----------
@@ -229,6 +284,29 @@ class Surface(abc.ABC):
     @abc.abstractmethod
     def _repr_params(self) -> dict:
         """Constructor parameters shown by ``repr``."""
+
+    def _require_finite_spectrum(self, given: dict, derived: str = "") -> None:
+        """Refuse constructor arguments whose spectrum overflows float64.
+
+        ``given`` maps the arguments to blame to how they are shown ("h_rms = 1.0 [m]");
+        ``derived`` names a derived
+        quantity already found non-finite (e.g. "C0 = inf [m^4]"). Otherwise every full-band
+        moment int q^k C dq (k = 0..3) must be finite: G(q), U_el and h_rms are built on them.
+        """
+        if not derived:
+            for k in _MOMENT_ORDERS:
+                with np.errstate(all="ignore"):
+                    m = self.moment(k)
+                if not math.isfinite(m):
+                    derived = f"int q^{k} C dq over [q0, q1] = {m!r} [m^{3 - k}]"
+                    break
+        if derived:
+            names = ", ".join(given)
+            got = ", ".join(given.values())
+            verb = "gives" if len(given) == 1 else "give"
+            raise ValueError(
+                f"{names} must give a spectrum whose moments int q^k C dq over [q0, q1] "
+                f"(k = 0..3) are finite in float64; got {got}, which {verb} {derived}")
 
     # --- public interface --------------------------------------------------------------------
     def psd(self, q):
@@ -297,13 +375,23 @@ class Surface(abc.ABC):
         out = out.reshape(shape)
         return float(out) if out.ndim == 0 else out
 
-    def h_rms(self) -> float:
-        """Root-mean-square height, :math:`(2\\pi \\int q C dq)^{1/2}`. [m]"""
-        return math.sqrt(2.0 * math.pi * self.moment(1))
+    @property
+    def h_rms(self) -> RmsValue:
+        """Root-mean-square height, :math:`(2\\pi \\int q C dq)^{1/2}`. [m]
 
-    def slope_rms(self) -> float:
-        """Root-mean-square slope, :math:`(2\\pi \\int q^3 C dq)^{1/2}`. [-]"""
-        return math.sqrt(2.0 * math.pi * self.moment(3))
+        A float (``s.h_rms * 1e9``, ``f"{s.h_rms:.3g}"``) that may also be called:
+        ``s.h_rms()`` returns the same value as a plain float (see :class:`RmsValue`).
+        """
+        return RmsValue(math.sqrt(2.0 * math.pi * self.moment(1)))
+
+    @property
+    def slope_rms(self) -> RmsValue:
+        """Root-mean-square slope, :math:`(2\\pi \\int q^3 C dq)^{1/2}`. [-]
+
+        A float that may also be called: ``s.slope_rms()`` returns the same value (see
+        :class:`RmsValue`).
+        """
+        return RmsValue(math.sqrt(2.0 * math.pi * self.moment(3)))
 
     def diffusion_time(self, q, e_star):
         """Diffusion time G(q) of the stress distribution.
@@ -328,11 +416,22 @@ class Surface(abc.ABC):
         equation ∂P/∂G = ∂²P/∂σ² (Persson, J. Chem. Phys. 115, 3840 (2001)). For the full band
         √G1 = E* slope_rms/(2√2).
         """
-        e = _positive_scalar(e_star, "e_star", "Pa")
+        e = check_e_star(e_star)
         arr = as_float_array(q, "q", "1/m")
         check_nonnegative(arr, "q", "1/m")
-        out = (0.25 * math.pi * e * e) * np.asarray(self.moment(3, self.q0, arr))
+        with np.errstate(over="ignore", invalid="ignore"):
+            out = (0.25 * math.pi * e * e) * np.asarray(self.moment(3, self.q0, arr))
+        if not np.all(np.isfinite(out)):
+            self._refuse_e_star(e, "G(q1)", "(pi/4) e_star^2 int q^3 C dq",
+                                (0.25 * math.pi * e * e) * self.moment(3), "Pa^2")
         return float(out) if arr.ndim == 0 else out
+
+    def _refuse_e_star(self, e: float, name: str, formula: str, value: float, unit: str) -> None:
+        """Raise the ValueError of an e_star that makes a scene quantity overflow float64."""
+        raise ValueError(
+            f"e_star must keep {name} = {formula} finite [Pa]; got e_star = {e!r}, which gives "
+            f"{name} = {value!r} [{unit}] for this surface (slope_rms = {float(self.slope_rms)!r} [-], "
+            f"h_rms = {float(self.h_rms)!r} [m]); e_star is in Pa (E* = 1 GPa is 1e9)")
 
     def elastic_energy_full_contact(self, e_star) -> float:
         """Elastic energy per nominal area stored at full contact. [J/m^2]
@@ -352,8 +451,12 @@ class Surface(abc.ABC):
         Persson, Eur. Phys. J. E 8, 385 (2002); Persson et al., J. Phys.: Condens. Matter 17,
         R1 (2005). It is U_el(ζ = 1) with P = S = 1.
         """
-        e = _positive_scalar(e_star, "e_star", "Pa")
-        return 0.5 * math.pi * e * self.moment(2)
+        e = check_e_star(e_star)
+        with np.errstate(over="ignore"):
+            out = 0.5 * math.pi * e * self.moment(2)
+        if not math.isfinite(out):
+            self._refuse_e_star(e, "U_el/A0", "(pi e_star/2) int q^2 C dq", out, "J/m^2")
+        return out
 
     def breakpoints(self) -> np.ndarray:
         """Sorted wavevectors in [q0, q1] where C(q) is not smooth (q0 and q1 included). [1/m]"""
@@ -458,6 +561,11 @@ class CapillaryWaves(Surface):
             else:
                 self._m = gam / (2.0 * kap)
                 self._n = math.sqrt(-disc) / (2.0 * kap)
+        self._require_finite_spectrum({
+            "temperature": f"temperature = {self.temperature!r} [K]",
+            "surface_tension": f"surface_tension = {self.surface_tension!r} [J/m^2]",
+            "q_c": f"q_c = {self.q_c!r} [1/m]",
+        })
 
     def _repr_params(self) -> dict:
         return {
@@ -564,7 +672,9 @@ class SelfAffine(Surface):
     C0 : float, optional
         Plateau value of C, > 0. [m^4]
 
-    Exactly one of ``h_rms``, ``slope_rms`` and ``C0`` must be given; the others follow.
+    Exactly one of ``h_rms``, ``slope_rms`` and ``C0`` must be given; the others follow. It
+    must leave C0 and the moments of C finite in float64 (``slope_rms=1e200`` would give
+    C0 = inf): otherwise a ValueError names it.
 
     Attributes
     ----------
@@ -617,12 +727,19 @@ class SelfAffine(Surface):
         self.C0 = 1.0
         if C0 is not None:
             self.C0 = _positive_scalar(C0, "C0", "m^4")
+            given = {"C0": f"C0 = {self.C0!r} [m^4]"}
         elif h_rms is not None:
             h = _positive_scalar(h_rms, "h_rms", "m")
-            self.C0 = h * h / (2.0 * math.pi * self.moment(1))
+            with np.errstate(all="ignore"):
+                self.C0 = h * h / (2.0 * math.pi * self.moment(1))
+            given = {"h_rms": f"h_rms = {h!r} [m]"}
         else:
             g = _positive_scalar(slope_rms, "slope_rms", "-")
-            self.C0 = g * g / (2.0 * math.pi * self.moment(3))
+            with np.errstate(all="ignore"):
+                self.C0 = g * g / (2.0 * math.pi * self.moment(3))
+            given = {"slope_rms": f"slope_rms = {g!r} [-]"}
+        finite_c0 = math.isfinite(self.C0)
+        self._require_finite_spectrum(given, "" if finite_c0 else f"C0 = {self.C0!r} [m^4]")
 
     def _repr_params(self) -> dict:
         return {"hurst": self.hurst, "q0": self.q0, "q1": self.q1, "q_r": self.q_r, "C0": self.C0}
@@ -722,6 +839,8 @@ class TabulatedPSD(Surface):
             alpha = np.log(ca[1:] / ca[:-1]) / np.log(qa[1:] / qa[:-1])
         self._alpha = np.where(positive, alpha, 0.0)
         self._block_sums = {}
+        self._require_finite_spectrum({"q": f"max(q) = {float(qa.max())!r} [1/m]",
+                                       "C": f"max(C) = {float(ca.max())!r} [m^4]"})
 
     @classmethod
     def from_line_scan(cls, q, C1d, hurst, q0=None, q1=None):

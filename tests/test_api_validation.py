@@ -317,6 +317,24 @@ def test_contact_zeta_nan():
         contact(zeta=[1.0, np.nan, 10.0])
 
 
+@pytest.mark.parametrize("dg", [0.0, 0.05])
+def test_contact_zeta_must_end_at_q1_over_q0(dg):
+    zeta1 = SURFACE.q1 / SURFACE.q0
+    with raises(r"^zeta must end at zeta1 = q1/q0 = ", lit(repr(zeta1)),
+                rf"got zeta\[2\] = {num(100.0)}\. Append q1/q0"):
+        contact(zeta=[1.0, 10.0, 100.0], work_of_adhesion=dg)
+
+
+def test_contact_e_star_overflowing_G():
+    with raises(r"^e_star must keep G\(q1\) = .* finite \[Pa\]", rf"got e_star = {num(1e300)}"):
+        contact(e_star=1e300)
+
+
+def test_contact_e_star_below_1e5_pa_warns():
+    with pytest.warns(UserWarning, match=r"^e_star = 1\.0 Pa is below 100000 Pa"):
+        contact(e_star=1.0)
+
+
 class _NotASurface:
     q0 = 1e4
     q1 = 1e8

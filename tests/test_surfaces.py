@@ -406,6 +406,7 @@ def test_reprs_show_parameters():
 _PROPERTY_SURFACES = _surfaces()
 
 
+@pytest.mark.filterwarnings("ignore:e_star = .* Pa is below:UserWarning")  # lam e_star < 1e5 Pa
 @settings(max_examples=60, deadline=None, derandomize=True, database=None)
 @given(
     which=st.integers(0, len(_PROPERTY_SURFACES) - 1),
