@@ -13,14 +13,54 @@ info
 
 Running ``persson-fast`` with no subcommand runs ``figure2``. A ValueError raised by the package
 (an invalid input) is printed as ``error: <message>`` and the exit code is 2.
+
+Negative numbers are values, also in exponent notation: ``--pressure -0.5e6`` and
+``--pressure-range -1e6 1e6 3`` ask for tensile nominal stresses (which need adhesion).
+
+Output files
+------------
+Each output is written to a temporary file in its folder and renamed onto its name only when
+complete, and the CSV and PNG of one ``figure2`` run are renamed together (Ctrl-C is held back
+during the renames): an error or a Ctrl-C leaves the previous outputs as they were and no
+temporary file behind. Replacing an existing file is said (``wrote PATH (replaced the existing
+file)``).
+
+``figure2.csv`` has one row per nominal pressure and the columns (units in the names):
+
+pressure_Pa
+    Nominal pressure p_nom. [Pa]
+area_no_adhesion
+    A/A0, relative real contact area without adhesion. [-]
+area_adhesion
+    A/A0 with adhesion, work of adhesion Delta gamma = 0.06 J/m^2. [-]
+force_per_contact_area_adhesion_Pa
+    p_nom A0/A with adhesion: the net normal force per unit real contact area (compression
+    minus the tension of the detached rims), by force balance; nan where A = 0. [Pa]
+compression_per_contact_area_adhesion_Pa
+    load/A with adhesion: the compressive load carried in the contact per unit real contact
+    area, the mean of the compressive stress distribution; larger than the previous column by
+    the rims' tension; nan where A = 0. [Pa]
+pull_off_stress_Pa
+    Pull-off stress sigma_c of the adhesive scene (contact exists for p_nom > -sigma_c), the
+    same on every row. [Pa]
+
+``contact --csv FILE`` writes pressure_Pa, area, force_per_contact_area_Pa,
+compression_per_contact_area_Pa (the same quantities for the chosen scene, equal without
+adhesion), status (0 ok, else the package's status code) and, with ``--pull-off``,
+pull_off_stress_Pa.
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import csv
 import math
 import os
+import re
+import signal
+import stat
 import sys
+import tempfile
 import time
 
 import numpy as np
@@ -53,8 +93,41 @@ _FLAG_OF = {
 }
 
 
+#: the columns of figure2.csv and what each holds (the module docstring says the same)
+FIGURE2_COLUMNS = {
+    "pressure_Pa": "nominal pressure p_nom [Pa]",
+    "area_no_adhesion": "A/A0 without adhesion [-]",
+    "area_adhesion": "A/A0 with adhesion (Delta gamma = 0.06 J/m^2) [-]",
+    "force_per_contact_area_adhesion_Pa":
+        "p_nom A0/A with adhesion: net force per real contact area [Pa]",
+    "compression_per_contact_area_adhesion_Pa":
+        "load/A with adhesion: compressive load per real contact area, i.e. the net force "
+        "plus the tension of the detached rims [Pa]",
+    "pull_off_stress_Pa": "pull-off stress sigma_c, the same on every row [Pa]",
+}
+
+#: the extra that brings matplotlib, and how to install it
+_PLOT_EXTRA_HINT = ("matplotlib is not installed; install the 'plot' extra: "
+                    "python -m pip install \"persson_fast[plot]\" "
+                    "(in a checkout: python -m pip install -e \".[plot]\")")
+
+#: a negative number written any way float() reads it, exponent notation included. argparse's
+#: own pattern (Python <= 3.12: '^-\d+$|^-\d*\.\d+$') takes -1e6 and -0.5e6 for flags.
+_NEGATIVE_NUMBER = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$|^-(inf|infinity|nan)$",
+                              re.IGNORECASE)
+
+
 class CommandError(ValueError):
     """An invalid command line or configuration file (printed like a package ValueError)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser that reads ``-1e6``, ``-0.5e6``, ``-.5`` (any negative number) as a
+    value, never as a flag; its subparsers are of the same class (``add_subparsers``)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = _NEGATIVE_NUMBER
 
 
 # --------------------------------------------------------------------------------------------
@@ -66,7 +139,7 @@ def build_parser() -> argparse.ArgumentParser:
     """The argument parser of ``persson-fast`` (exposed for documentation and tests)."""
     from . import __version__
 
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="persson-fast",
         description="Persson contact mechanics: real contact area of rough surfaces.",
         epilog="Without a subcommand, 'figure2' is run.",
@@ -77,7 +150,12 @@ def build_parser() -> argparse.ArgumentParser:
     f2 = sub.add_parser(
         "figure2", help="the seed paper's PMMA scene: A/A0 against pressure (its Fig. 2)",
         description="Relative contact area of the seed paper's PMMA scene (frozen capillary "
-                    "waves, E = 2.9 GPa) against the nominal pressure 0-100 MPa.",
+                    "waves, E = 2.9 GPa) against the nominal pressure 0-100 MPa, with and "
+                    "without adhesion, and its pull-off stress. Writes DIR/figure2.csv and "
+                    "DIR/figure2.png; existing files are replaced (and said so).",
+        epilog="columns of figure2.csv:\n" + "\n".join(
+            f"  {name}: {text}" for name, text in FIGURE2_COLUMNS.items()),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     f2.add_argument("--out", default="persson_fast_out", metavar="DIR",
                     help="output folder (default: %(default)s)")
@@ -108,7 +186,7 @@ def build_parser() -> argparse.ArgumentParser:
     g = ct.add_argument_group("self-affine surface")
     g.add_argument("--hurst", type=float, metavar="H", help="Hurst exponent [-]")
     g.add_argument("--q-r", type=float, metavar="QR", help="roll-off wavevector [1/m]")
-    g.add_argument("--h-rms", type=float, metavar="H", help="rms height [m]")
+    g.add_argument("--h-rms", type=float, metavar="HRMS", help="rms height [m]")
     g.add_argument("--slope-rms", type=float, metavar="S", help="rms slope [-]")
     g.add_argument("--c0", type=float, metavar="C0", help="plateau of the spectrum [m^4]")
     g = ct.add_argument_group("both models")
@@ -125,14 +203,19 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--pull-off", action="store_true", help="also compute the pull-off stress")
     pr = ct.add_mutually_exclusive_group()
     pr.add_argument("--pressure", type=float, nargs="+", metavar="P",
-                    help="nominal pressures [Pa]")
+                    help="nominal pressures [Pa]; negative (tension, e.g. -0.5e6) needs "
+                         "adhesion")
     pr.add_argument("--pressure-range", type=float, nargs=3, metavar=("PMIN", "PMAX", "N"),
-                    help="N pressures from PMIN to PMAX [Pa], evenly spaced")
+                    help="N pressures from PMIN to PMAX [Pa], evenly spaced (e.g. "
+                         "-1e6 1e6 5)")
     ct.add_argument("--method", choices=tuple(METHODS),
                     help="solution method (default: auto)")
     ct.add_argument("--rtol", type=float, metavar="R",
                     help="target relative accuracy (default 1e-6)")
-    ct.add_argument("--csv", metavar="FILE", help="also write the table to this CSV file")
+    ct.add_argument("--csv", metavar="FILE",
+                    help="also write the table to this CSV file (replaced if it exists); "
+                         "columns: pressure_Pa, area, force_per_contact_area_Pa, "
+                         "compression_per_contact_area_Pa, status[, pull_off_stress_Pa]")
 
     sub.add_parser("info", help="versions, threads and kernel compile time",
                    description="Print versions and threads, then compile (or load from the "
@@ -207,20 +290,29 @@ def _cmd_figure2(args) -> int:
 
     os.makedirs(args.out, exist_ok=True)
     csv_path = os.path.join(args.out, "figure2.csv")
+    png_path = os.path.join(args.out, "figure2.png")
     columns = {"pressure_Pa": pressure, "area_no_adhesion": res.area,
                "area_adhesion": area_adh,
-               "mean_contact_pressure_adhesion_Pa": res_adh.mean_contact_pressure,
-               "mean_contact_stress_adhesion_Pa": res_adh.mean_contact_stress}
-    _write_csv(csv_path, columns)
-    print(f"wrote {csv_path}")
-    if args.no_plot:
-        print("plot: skipped (--no-plot)")
-    else:
-        png_path = os.path.join(args.out, "figure2.png")
-        if _plot_figure2(png_path, pressure, res.area, area_adh, nu):
-            print(f"wrote {png_path}")
+               "force_per_contact_area_adhesion_Pa": res_adh.mean_contact_pressure,
+               "compression_per_contact_area_adhesion_Pa": res_adh.mean_contact_stress,
+               "pull_off_stress_Pa": np.full(pressure.shape, sigma_c)}
+    assert list(columns) == list(FIGURE2_COLUMNS)
+    # both files go to temporary names first and are renamed together at the end
+    with _OutputSet() as outputs:
+        _write_csv(outputs.path(csv_path), columns)
+        plt = None if args.no_plot else _pyplot()
+        if args.no_plot:
+            plot_skipped = "--no-plot"
+        elif plt is None:
+            plot_skipped = _PLOT_EXTRA_HINT
         else:
-            print("plot: skipped (matplotlib is not installed; pip install matplotlib)")
+            plot_skipped = None
+            _plot_figure2(plt, outputs.path(png_path), pressure, res.area, area_adh, nu)
+        outputs.commit()
+    if plot_skipped is not None:
+        print(f"plot: skipped ({plot_skipped})")
+        if os.path.exists(png_path):
+            print(f"note: {png_path} is left from an earlier run; it does not show this one")
 
     compile_s = sum(r.timings.get("compile", 0.0) for r in (res, res_cn, res_adh))
     timing = (f"time: {t_total + t_pull:.3g} s (auto {t_auto:.3g} s, cn {t_cn:.3g} s, "
@@ -233,14 +325,20 @@ def _cmd_figure2(args) -> int:
     return 0
 
 
-def _plot_figure2(path, pressure, area, area_adh, nu) -> bool:
+def _pyplot():
+    """matplotlib.pyplot on the Agg backend, or None when matplotlib is not installed."""
     try:
         import matplotlib
 
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
     except ImportError:
-        return False
+        return None
+    return plt
+
+
+def _plot_figure2(plt, path, pressure, area, area_adh, nu) -> None:
+    """Plot A/A0 against p_nom into the PNG file ``path`` (any name: the format is explicit)."""
     fig, ax = plt.subplots(figsize=(5.5, 4.0))
     p_mpa = pressure / 1e6
     ax.plot(p_mpa, area, color="C0", label="no adhesion")
@@ -256,9 +354,10 @@ def _plot_figure2(path, pressure, area, area_adh, nu) -> bool:
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper left", frameon=False)
     fig.tight_layout()
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    return True
+    try:
+        fig.savefig(path, dpi=150, format="png")
+    finally:
+        plt.close(fig)
 
 
 def _write_csv(path, columns: dict) -> None:
@@ -277,6 +376,99 @@ def _write_csv(path, columns: dict) -> None:
         writer.writerow(names)
         for i in range(len(arrays[0]) if arrays else 0):
             writer.writerow([f(a[i]) for f, a in zip(fmt, arrays)])
+
+
+@contextlib.contextmanager
+def _sigint_held():
+    """Hold back SIGINT (Ctrl-C) inside the block; one that came meanwhile is raised after it.
+
+    Outside the main thread (where Python cannot install signal handlers), or when SIGINT has a
+    handler that Python did not install (and so could not put back), the block runs as it is.
+    """
+    caught = []
+    previous = signal.getsignal(signal.SIGINT)
+    held = False
+    if previous is not None:
+        try:
+            signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+            held = True
+        except ValueError:  # not the main thread of the main interpreter
+            pass
+    try:
+        yield
+    finally:
+        if held:
+            signal.signal(signal.SIGINT, previous)
+            if caught and previous is not signal.SIG_IGN:
+                if callable(previous):
+                    previous(signal.SIGINT, None)  # the default one raises KeyboardInterrupt
+                else:
+                    raise KeyboardInterrupt
+
+
+class _OutputSet:
+    """The output files of one run, written under temporary names and renamed together.
+
+    ``path(final)`` creates an empty temporary file in the folder of ``final`` and returns its
+    name, to be written instead of ``final``; ``commit()`` renames each onto its final name
+    (``os.replace``: atomic within a folder) with Ctrl-C held back, so an interrupt leaves either
+    all the old files or all the new ones, and prints ``wrote PATH``, adding when an existing
+    file was replaced. Leaving the ``with`` block otherwise (an error, a KeyboardInterrupt)
+    removes the temporary files and leaves the existing outputs untouched.
+    """
+
+    def __init__(self):
+        self._pending = []  # (temporary name, final name)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc_info):
+        self.discard()
+        return False
+
+    def path(self, final: str) -> str:
+        folder = os.path.dirname(os.path.abspath(final))
+        fd, tmp = tempfile.mkstemp(prefix=f".{os.path.basename(final)}.", suffix=".tmp",
+                                   dir=folder)
+        self._pending.append((tmp, final))
+        os.close(fd)
+        return tmp
+
+    def discard(self) -> None:
+        """Remove the temporary files not yet renamed."""
+        while self._pending:
+            tmp, _ = self._pending.pop()
+            with contextlib.suppress(OSError):
+                os.remove(tmp)
+
+    def commit(self) -> None:
+        """Rename every temporary file onto its final name; say which existed before."""
+        for _, final in self._pending:
+            if os.path.isdir(final):
+                raise IsADirectoryError(f"cannot write {final!r}: it is a folder")
+        for tmp, final in self._pending:
+            _set_mode(tmp, final)
+        with _sigint_held():
+            while self._pending:
+                tmp, final = self._pending[0]
+                existed = os.path.exists(final)
+                os.replace(tmp, final)
+                self._pending.pop(0)
+                print(f"wrote {final}" + (" (replaced the existing file)" if existed else ""))
+
+
+def _set_mode(tmp: str, final: str) -> None:
+    """Give ``tmp`` the permissions ``final`` has (or a new file would get: 0o666 - umask),
+    instead of mkstemp's 0o600."""
+    try:
+        mode = stat.S_IMODE(os.stat(final).st_mode)
+    except OSError:
+        umask = os.umask(0)
+        os.umask(umask)
+        mode = 0o666 & ~umask
+    with contextlib.suppress(OSError):
+        os.chmod(tmp, mode)
 
 
 # --------------------------------------------------------------------------------------------
@@ -415,6 +607,7 @@ def _cmd_contact(args) -> int:
     res = pf.solve_contact(surface, s["pressure"], e_star=e_star, method=s["method"],
                            rtol=s["rtol"], **s["adhesion"])
     elapsed = time.perf_counter() - t0
+    sigma_c = None
     slope = surface.slope_rms()
     print(f"surface: {surface!r}")
     print(f"h_rms = {surface.h_rms():.4g} m, rms slope = {slope:.4g}, E* = {e_star:.4g} Pa, "
@@ -443,11 +636,15 @@ def _cmd_contact(args) -> int:
         folder = os.path.dirname(s["csv"])
         if folder:
             os.makedirs(folder, exist_ok=True)
-        _write_csv(s["csv"], {"pressure_Pa": res.pressure, "area": res.area,
-                              "mean_contact_pressure_Pa": res.mean_contact_pressure,
-                              "mean_contact_stress_Pa": res.mean_contact_stress,
-                              "status": res.status})
-        print(f"wrote {s['csv']}")
+        columns = {"pressure_Pa": res.pressure, "area": res.area,
+                   "force_per_contact_area_Pa": res.mean_contact_pressure,
+                   "compression_per_contact_area_Pa": res.mean_contact_stress,
+                   "status": res.status}
+        if sigma_c is not None:
+            columns["pull_off_stress_Pa"] = np.full(res.pressure.shape, sigma_c)
+        with _OutputSet() as outputs:
+            _write_csv(outputs.path(s["csv"]), columns)
+            outputs.commit()
     return 0
 
 
