@@ -25,7 +25,7 @@ from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite
 from .methods import METHODS, check_serves, choose_auto
 from .results import ContactResult, per_contact_area, summarize_status
-from .sweep import choose_parallel, interleave, is_compiled
+from .sweep import choose_parallel, is_compiled, run_rows
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
 
@@ -114,8 +114,8 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
     residual = np.zeros(n_p)
     if x_init is None:
         x_init = np.full((n_p, n_z), -1.0)
-    parallel = choose_parallel(parallel, n_p, adhesive_sweep_parallel)
-    kernel = adhesive_sweep_parallel if parallel else adhesive_sweep_serial
+    mode = choose_parallel(parallel, n_p)
+    kernel = adhesive_sweep_parallel if mode == "prange" else adhesive_sweep_serial
     timings = {}
     if not is_compiled(kernel):
         t0 = time.perf_counter()
@@ -123,25 +123,24 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
                controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs], status[:1],
                iterations[:1], residual[:1])
         timings["compile"] = time.perf_counter() - t0
-    order = interleave(n_p) if parallel else np.arange(n_p)
+    args = [variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled), rtol,
+            controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
+            np.ascontiguousarray(x_init), *outs, status, iterations, residual]
     t0 = time.perf_counter()
-    kernel(variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled[order]), rtol,
-           controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
-           np.ascontiguousarray(x_init[order]), *outs, status, iterations, residual)
+    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args, (6, 12),
+             tuple(range(13, len(args))), n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(n_p)
-    outs = [o[inverse] for o in outs]
-    return outs, status[inverse], iterations[inverse], residual[inverse], timings
+    return outs, status, iterations, residual, timings
 
 
-def warm_adhesion(parallel: bool = True) -> None:
-    """Compile (or load) the adhesive sweep kernels on a tiny problem."""
+def warm_adhesion(prange: bool = False) -> None:
+    """Compile (or load) the adhesive sweep kernels on a tiny problem (``prange``: also the
+    ``prange`` sweep)."""
     G = np.array([0.0, 1.0, 2.0])
     c = np.array([0.1, 0.2, 0.3])
     w = np.array([0.1, 0.1])
     ctl = _controls(None)
-    for par in ((False, True) if parallel else (False,)):
+    for par in ((False, "prange") if prange else (False,)):
         _run(G, c, w, w, -1.0, np.array([1.0]), 1e-2, par, ctl)
 
 

@@ -1,10 +1,11 @@
-"""Batch pressures through the compiled kernels, serially or over ``prange`` threads.
+"""Batch pressures through the compiled kernels: serially, on a thread pool or over ``prange``.
 
 The model layer owns the scaling: diffusion times and stresses reach the kernels divided by
 a scene scale, so the kernels never see a Pascal.
 """
 from __future__ import annotations
 
+import threading
 import time
 
 import numpy as np
@@ -12,36 +13,180 @@ import numpy as np
 from ._kernels.sweep import sweep_parallel, sweep_serial
 from .methods import METHODS
 
-#: below this many pressures the thread start-up costs more than it saves
+#: below this many pressures one thread does the whole batch: handing rows to the pool costs
+#: about 0.1 ms per call (2-core machine), the work per pressure 0.05-20 ms
 PARALLEL_MIN_PRESSURES = 4
-#: the parallel kernels are not cached on disk, so compiling them costs ~4 s per process
-#: (2-core machine); before they are compiled, only a batch this large goes parallel
-PARALLEL_COMPILE_PRESSURES = 1000
+#: blocks of rows per thread handed to the pool: more blocks balance better, each costs a
+#: kernel call (~10 us)
+BLOCKS_PER_THREAD = 4
+#: the values of ``parallel`` a caller may pass
+PARALLEL_CHOICES = (None, False, True, "threads", "prange")
+
+_pool = None
+_pool_threads = 0
+_pool_lock = threading.Lock()
+_on_worker = threading.local()
+_prange_lock = threading.Lock()
 
 
-def choose_parallel(parallel, n_p: int, kernel) -> bool:
-    """The ``parallel=None`` cost model: threads when the parallel kernel is compiled and
-    there are >= PARALLEL_MIN_PRESSURES pressures, or when the batch is large enough
-    (>= PARALLEL_COMPILE_PRESSURES) to pay for compiling it. ``pf.warmup()`` compiles it."""
-    if parallel is not None:
-        return bool(parallel)
-    if is_compiled(kernel):
-        return n_p >= PARALLEL_MIN_PRESSURES
-    return n_p >= PARALLEL_COMPILE_PRESSURES
-
-
-def interleave(n: int) -> np.ndarray:
-    """A permutation that deals n items round-robin over the threads.
-
-    ``prange`` hands each thread a contiguous block; per-pressure cost varies by orders of
-    magnitude along a pressure scan (large pressures are nearly free), so contiguous blocks
-    are badly unbalanced. Dealing the rows out round-robin balances them; every row is still
-    computed by the same code, so serial and parallel results stay bitwise equal.
-    """
+def n_threads() -> int:
+    """The number of threads a parallel sweep uses: numba's (``NUMBA_NUM_THREADS``, or
+    ``numba.set_num_threads`` on the calling thread)."""
     import numba
 
-    t = max(1, int(numba.get_num_threads()))
-    return np.concatenate([np.arange(i, n, t) for i in range(t)]) if n > t else np.arange(n)
+    return max(1, int(numba.get_num_threads()))
+
+
+def check_parallel(parallel):
+    """``parallel`` validated: None, False, True, "threads" or "prange"."""
+    if isinstance(parallel, (bool, np.bool_)) or parallel is None:
+        return None if parallel is None else bool(parallel)
+    if isinstance(parallel, str) and parallel in ("threads", "prange"):
+        return parallel
+    raise ValueError(f"parallel must be None, False, True, 'threads' or 'prange'; got "
+                     f"parallel = {parallel!r}")
+
+
+def choose_parallel(parallel, n_p: int) -> str:
+    """How a sweep of ``n_p`` pressures runs: "serial", "threads" or "prange".
+
+    * None (default): "threads" for >= PARALLEL_MIN_PRESSURES pressures when numba allows more
+      than one thread, else "serial";
+    * True or "threads": a pool of Python threads, each calling the disk-cached serial sweep
+      kernel (it releases the GIL) on a block of rows; nothing to compile beyond the serial
+      kernel, so it is the default from the first call;
+    * "prange": numba's ``prange`` sweep (compiled once per process, a few seconds, not cached
+      on disk: numba issue 4807); under numba's ``workqueue`` threading layer, which does not
+      allow concurrent entry, such calls are serialised;
+    * False: one thread.
+
+    A call made on one of the pool's own threads (a sweep inside a parallel task) runs
+    serially, so pools never nest.
+    """
+    parallel = check_parallel(parallel)
+    if parallel is False or n_p <= 1 or getattr(_on_worker, "flag", False):
+        return "serial"
+    if parallel == "prange":
+        return "prange"
+    if n_threads() < 2 or (parallel is None and n_p < PARALLEL_MIN_PRESSURES):
+        return "serial"
+    return "threads"
+
+
+def interleave(n: int, blocks: int) -> np.ndarray:
+    """A permutation that deals n rows round-robin into ``blocks`` contiguous blocks.
+
+    The cost per pressure varies by orders of magnitude along a pressure scan (large
+    pressures are nearly free), so contiguous blocks of the caller's order are badly
+    unbalanced; dealt round-robin, every block holds a sample of the whole range. Every row is
+    still computed by the same code, so the results are bitwise those of a serial sweep.
+    """
+    if n <= blocks:
+        return np.arange(n)
+    return np.concatenate([np.arange(i, n, blocks) for i in range(blocks)])
+
+
+def _block_bounds(n: int, blocks: int):
+    """[lo, hi) of each block of :func:`interleave`'s permutation."""
+    sizes = [len(range(i, n, blocks)) for i in range(min(n, blocks))]
+    bounds = np.concatenate([[0], np.cumsum(sizes)])
+    return [(int(bounds[i]), int(bounds[i + 1])) for i in range(len(sizes))]
+
+
+def _get_pool(threads: int):
+    global _pool, _pool_threads
+    with _pool_lock:
+        if _pool is None or _pool_threads != threads:
+            from concurrent.futures import ThreadPoolExecutor
+
+            old = _pool
+            _pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="persson_fast",
+                                       initializer=_mark_worker)
+            _pool_threads = threads
+            if old is not None:
+                old.shutdown(wait=False)
+        return _pool
+
+
+def _mark_worker():
+    _on_worker.flag = True
+
+
+def _workqueue_layer() -> bool:
+    """True when numba's parallel backend may be the workqueue, which does not allow
+    concurrent entry from several Python threads (it aborts the process)."""
+    import numba
+
+    layer = str(numba.config.THREADING_LAYER).lower()
+    if layer in ("tbb", "omp", "safe", "threadsafe"):
+        return False          # named thread-safe layers (numba raises if they are missing)
+    if layer == "workqueue":
+        return True
+    candidates = ("tbbpool",) if layer == "forksafe" else ("tbbpool", "omppool")
+    for mod in candidates:
+        try:
+            __import__(f"numba.np.ufunc.{mod}")
+            return False
+        except Exception:  # noqa: BLE001 -- an unloadable backend is simply absent
+            continue
+    return True
+
+
+def run_rows(kernel_serial, kernel_prange, args, rows_in, rows_out, n: int, parallel) -> str:
+    """Call a sweep kernel over ``n`` rows, serially, on a thread pool or over ``prange``.
+
+    Parameters
+    ----------
+    kernel_serial, kernel_prange : numba dispatchers of one sweep body (``njit_sweeps``).
+    args : list -- the kernel's positional arguments.
+    rows_in, rows_out : tuple of int -- positions in ``args`` of the per-row arrays (first axis
+        = row): inputs (read) and outputs (written in place, also in ``args``).
+    n : int -- number of rows.
+    parallel : see :func:`choose_parallel`.
+
+    Returns
+    -------
+    mode : str -- "serial", "threads" or "prange", the way the rows ran.
+
+    Notes
+    -----
+    With threads, the rows are dealt round-robin into ``BLOCKS_PER_THREAD`` blocks per thread
+    (:func:`interleave`) and each block is one call of the serial kernel on contiguous slices;
+    each row is computed by the same compiled code as in a serial sweep, so the results are
+    bitwise equal. A ``KeyboardInterrupt`` while waiting cancels the blocks not yet started.
+    """
+    mode = choose_parallel(parallel, n)
+    if mode == "serial":
+        kernel_serial(*args)
+        return mode
+    threads = n_threads()
+    blocks = max(1, min(n, BLOCKS_PER_THREAD * threads))
+    order = interleave(n, blocks)
+    perm = list(args)
+    for i in rows_in + rows_out:
+        perm[i] = np.ascontiguousarray(args[i][order])
+    if mode == "prange":
+        if _workqueue_layer():
+            with _prange_lock:
+                kernel_prange(*perm)
+        else:
+            kernel_prange(*perm)
+    else:
+        sliced = set(rows_in + rows_out)
+        pool = _get_pool(threads)
+        futures = [pool.submit(kernel_serial, *[a[lo:hi] if i in sliced else a
+                                                for i, a in enumerate(perm)])
+                   for lo, hi in _block_bounds(n, blocks)]
+        try:
+            for f in futures:
+                f.result()
+        except BaseException:
+            for f in futures:
+                f.cancel()
+            raise
+    for i in rows_out:
+        args[i][order] = perm[i]
+    return mode
 
 
 def is_compiled(func) -> bool:
@@ -82,7 +227,7 @@ def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, p
     method : str -- a compiled entry of :data:`persson_fast.METHODS`.
     level : int -- >= 0: explicit resolution level (doubles per level), ignoring rtol.
     n_damp : int -- Rannacher damping steps after wall jumps.
-    parallel : bool or None -- None: see :func:`choose_parallel`.
+    parallel : None, bool, "threads" or "prange" -- see :func:`choose_parallel`.
 
     Returns
     -------
@@ -95,37 +240,31 @@ def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, p
     pressures = np.ascontiguousarray(pressures, dtype=np.float64)
     n_p, n_t = sa_rows.shape
     scale = _scene_scale(G, sa_rows, pressures)
-    Gs = G / scale**2
-    sas = sa_rows / scale
-    ps = pressures / scale
-    out = {name: np.zeros((n_p, n_t)) for name in
-           ("area", "load", "detached_area", "detached_load", "error_estimate")}
+    names = ("area", "load", "detached_area", "detached_load", "error_estimate")
+    out = {name: np.zeros((n_p, n_t)) for name in names}
     status = np.zeros(n_p, dtype=np.int64)
     counts = np.zeros((n_p, 3), dtype=np.int64)
     serial, par_kernel, lead, damped = _kernels_for(method)
-    parallel = choose_parallel(parallel, n_p, par_kernel)
-    kernel = par_kernel if parallel else serial
     timings = {}
+    mode = choose_parallel(parallel, n_p)
+    kernel = par_kernel if mode == "prange" else serial
     if not is_compiled(kernel):
         t0 = time.perf_counter()
         _warm(kernel, lead, damped)
         timings["compile"] = time.perf_counter() - t0
-    order = interleave(n_p) if parallel else np.arange(n_p)
-    sas_o = np.ascontiguousarray(sas[order])
-    ps_o = np.ascontiguousarray(ps[order])
     mid = (float(rtol), int(level)) + ((int(n_damp),) if damped else ())
+    args = [*lead, G / scale**2, sa_rows / scale, pressures / scale, *mid,
+            *(out[name] for name in names), status, counts]
+    first = len(lead)
+    rows_in = (first + 1, first + 2)
+    rows_out = tuple(range(first + 3 + len(mid), len(args)))
     t0 = time.perf_counter()
-    kernel(*lead, Gs, sas_o, ps_o, *mid, out["area"], out["load"], out["detached_area"],
-           out["detached_load"], out["error_estimate"], status, counts)
+    run_rows(serial, par_kernel, args, rows_in, rows_out, n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
-    inverse = np.empty_like(order)
-    inverse[order] = np.arange(n_p)
-    for key in out:
-        out[key] = out[key][inverse]
     out["load"] *= scale
     out["detached_load"] *= scale
-    out["status"] = status[inverse]
-    out["counts"] = counts[inverse]
+    out["status"] = status
+    out["counts"] = counts
     return out, timings
 
 
@@ -148,18 +287,24 @@ def _warm(kernel, lead=(0,), damped=True) -> None:
            np.zeros((1, 3), dtype=np.int64))
 
 
-def warmup(parallel: bool = True) -> dict:
-    """Compile (or load from the cache) the sweep kernels now; return the seconds spent."""
+def warmup(prange: bool = False) -> dict:
+    """Compile (or load from the disk cache) the sweep kernels now; return the seconds spent.
+
+    The serial kernels (which the default thread pool also runs) are cached on disk: the first
+    call on a machine compiles them, later processes load them. ``prange=True`` also compiles
+    numba's ``prange`` sweeps (only used with ``parallel="prange"``; not cached on disk, so
+    compiled once per process).
+    """
     from .adhesion import warm_adhesion
 
     timings = {}
-    for name, kernel in (("serial", sweep_serial), ("parallel", sweep_parallel)):
-        if name == "parallel" and not parallel:
+    for name, kernel in (("serial", sweep_serial), ("prange", sweep_parallel)):
+        if name == "prange" and not prange:
             continue
         t0 = time.perf_counter()
         _warm(kernel)
         timings[name] = time.perf_counter() - t0
     t0 = time.perf_counter()
-    warm_adhesion(parallel)
+    warm_adhesion(prange)
     timings["adhesion"] = time.perf_counter() - t0
     return timings
