@@ -37,6 +37,43 @@ LOST_ITERATIONS = 3
 
 
 @njit_serial
+def solve_small(M, r):
+    """Solve M x = r in place for a small dense system (Gaussian elimination with partial
+    pivoting); M is overwritten by its factors, r by x.
+
+    Written out (rather than ``np.linalg.solve``) because the Anderson systems are at most
+    ``m_hist`` x ``m_hist`` and LAPACK's bindings roughly double the adhesive kernel's
+    compile time.
+    """
+    n = r.shape[0]
+    for k in range(n):
+        piv = k
+        big = abs(M[k, k])
+        for i in range(k + 1, n):
+            if abs(M[i, k]) > big:
+                big = abs(M[i, k])
+                piv = i
+        if piv != k:
+            for j in range(n):
+                t = M[k, j]
+                M[k, j] = M[piv, j]
+                M[piv, j] = t
+            t = r[k]
+            r[k] = r[piv]
+            r[piv] = t
+        for i in range(k + 1, n):
+            f = M[i, k] / M[k, k]
+            for j in range(k + 1, n):
+                M[i, j] -= f * M[k, j]
+            r[i] -= f * r[k]
+    for k in range(n - 1, -1, -1):
+        t = r[k]
+        for j in range(k + 1, n):
+            t -= M[k, j] * r[j]
+        r[k] = t / M[k, k]
+
+
+@njit_serial
 def elastic_energy_ratio(area, wa, wb, gamma_s, out_u):
     """U_el(zeta_i)/dgamma for an area profile (cumulative from zeta1 downwards)."""
     n = area.shape[0]
@@ -157,7 +194,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             rtol_it = 0.1 * residual
         if rtol_it < rtol or final_pass:
             rtol_it = rtol
-        kstat = solve_variant(variant, G, x, sigma0, rtol_it, -1, n_damp, area, load, det_a,
+        kstat = solve_variant(variant, G, x, sigma0, rtol_it, np.int64(-1), n_damp, area, load, det_a,
                               det_l, err, counts)
         if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
@@ -221,7 +258,8 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
                 trace += M[a, a]
             for a in range(n_hist):
                 M[a, a] += 1e-10 * trace + 1e-300
-            coef = np.linalg.solve(M, r)
+            solve_small(M, r)
+            coef = r
             for i in range(n):
                 corr = 0.0
                 for a in range(n_hist):

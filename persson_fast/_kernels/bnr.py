@@ -496,7 +496,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
     y0 = sigma0 + sa0
     if y0 <= 0.0:
         # separated: the start lies on or below the wall
-        fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
+        fill_state(np.int64(0), nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
               out_det_load, out_error)
         return st.OK
     # --- the wall in scaled units: b(t) = -(sa(G) - sa0) / y0, t = 2 G / y0^2 -------------
@@ -540,7 +540,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
     c_far = math.sqrt(2.0 * L_START)
     # --- outputs while the wall is still far: the free state (A = 1 to ~1e-17) --------------
     if t_end <= 0.0 or _wall_far_until(tp, bp, sp, n_pc, t_end, c_far):
-        fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
+        fill_state(np.int64(0), nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
               out_det_load, out_error)
         counts[0] = 0
         return st.OK
@@ -654,7 +654,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         ta = tb
     if n_seg == 0:
         # every schedule point lies before the start: the free state throughout
-        fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, ROUND_FLOOR, out_area, out_load, out_det_area,
+        fill_state(np.int64(0), nt, 1.0, sigma0, 0.0, 0.0, ROUND_FLOOR, out_area, out_load, out_det_area,
               out_det_load, out_error)
         return st.OK
     # --- three runs (N, 2N, 4N) and two Richardson steps ----------------------------------
@@ -672,7 +672,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
                          seg_piece, n_seg, sk, tp, bp, sp, f_d, f_e, err, scratch, counts)
         if status != st.OK:
             nan = math.nan
-            fill_state(0, nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
+            fill_state(np.int64(0), nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
                   out_det_load, out_error)
             return status
     else:
@@ -728,7 +728,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         counts[1] = work
         if not have:
             nan = math.nan
-            fill_state(0, nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
+            fill_state(np.int64(0), nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
                   out_det_load, out_error)
             return status if status != st.OK else st.GRID_CAP
     counts[2] = counts[1]

@@ -544,7 +544,7 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
               out_error):
     """The "cn" variant of :func:`solve_grid` at tolerance ``rtol`` (no work counts)."""
     counts = np.zeros(3, dtype=np.int64)
-    sx, stp, theta, extrapolate, work_max = variant_resolution(CN, rtol, -1)
+    sx, stp, theta, extrapolate, work_max = variant_resolution(CN, rtol, np.int64(-1))
     return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp, out_area,
                       out_load, out_det_area, out_det_load, out_error, counts)
 
@@ -606,7 +606,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
         if sigma0 + sa[k] <= 0.0:
             separated = True
     if separated:
-        fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
+        fill_state(np.int64(0), nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
                     out_det_load, out_error)
         return st.OK
     y0 = sigma0 + sa0
@@ -622,7 +622,7 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
     sig0s = sigma0 / y0
     # the wall never comes near the distribution: the free solution is exact (A = 1)
     if _wall_always_far(G_k, sa_k, sa0s, K_ALWAYS_FAR):
-        fill_state(0, nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
+        fill_state(np.int64(0), nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
                     out_det_load, out_error)
         return st.OK
     # first linear piece after G = 0
@@ -770,11 +770,11 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
     fdl = np.empty(nt + 1)
     counts[0] = n_c + 1
     s1, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_c + 1,
-                  h_c, nper, nper_width, 1, n_damp, theta, coarsen_at, p[: n_c + 1],
+                  h_c, nper, nper_width, np.int64(1), n_damp, theta, coarsen_at, p[: n_c + 1],
                   tmp[: n_c + 1], lo, di, up, a_lo, a_di, a_up, rhs, scratch, ca, cl, cd, cdl,
                   counts)
     s2, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_f + 1,
-                  0.5 * h_c, nper, nper_width, 2, n_damp, theta, coarsen_at, p, tmp, lo, di,
+                  0.5 * h_c, nper, nper_width, np.int64(2), n_damp, theta, coarsen_at, p, tmp, lo, di,
                   up, a_lo, a_di, a_up, rhs, scratch, fa, fl, fd, fdl, counts)
     if s1 != st.OK:
         status = s1

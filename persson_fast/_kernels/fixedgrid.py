@@ -536,7 +536,7 @@ def solve_fixedgrid_detail(G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
         out_error[:] = np.nan
         return st.BAD_INPUT
     if sigma0 + sa[0] <= 0.0:
-        fill_state(0, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
+        fill_state(np.int64(0), nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load, out_det_area,
                    out_det_load, out_error)
         for k in range(nt):
             out_flux_det[k] = 1.0
