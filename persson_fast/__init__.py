@@ -31,7 +31,7 @@ from .surfaces import (
     seed_e_star,
     seed_scene,
 )
-from .scan import scan
+from .scan import ScanWarning, scan
 from .sweep import warmup
 
 __version__ = "0.1.0"
@@ -46,6 +46,7 @@ __all__ = [
     "ContactResult",
     "DiffusionResult",
     "METHODS",
+    "ScanWarning",
     "SelfAffine",
     "Surface",
     "TabulatedPSD",

@@ -18,6 +18,15 @@ that: ``ds.area.sel(hurst=0.8, work_of_adhesion=0.06)`` selects by value,
 pressure) is one ``ds.to_dataframe()`` away. A flat DataFrame as the primary result would
 lose the grid structure (and repeat every per-scene value on every pressure row).
 
+Failures
+--------
+A scan of 10^4 scenes should not be lost to one scene, nor hide it: a scene whose
+``solve_contact`` or ``pull_off`` raises is recorded (NaN, ``success`` False, the error in
+``message``, ``status`` :data:`SCENE_ERROR` for a raised solve) and the other scenes run on;
+flagged points (``status`` != 0) and unconverged pull-offs keep their numbers with ``success``
+False. A failed scene's ``message`` starts with what failed. When any scene failed, the scan
+issues one :class:`ScanWarning` naming how many and the worst few (parameters and messages).
+
 Execution
 ---------
 *Local* (``client=None``). The compiled kernels release the GIL, so scenes run on a pool of
@@ -52,6 +61,7 @@ import math
 import sys
 import time
 import uuid
+import warnings
 from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 
 import numpy as np
@@ -63,7 +73,8 @@ from .api import _check_rtol, default_zeta, solve_contact
 from .methods import METHODS
 from .surfaces import Surface
 
-__all__ = ["scan", "solve_chunk", "SOLVE_PARAMETERS", "PARAMETER_UNITS"]
+__all__ = ["scan", "solve_chunk", "ScanWarning", "SCENE_ERROR", "SOLVE_PARAMETERS",
+           "PARAMETER_UNITS"]
 
 #: parameters that go to :func:`solve_contact` / :func:`pull_off` rather than to the surface
 SOLVE_PARAMETERS = ("e_star", "work_of_adhesion", "energy_correction", "detachment_prefactor")
@@ -111,12 +122,44 @@ _COST_ADHESION = 5e-3
 _COST_SCENE = 2e-4
 _PULL_OFF_SOLVES = 40
 
+#: ``status`` of every pressure of a scene whose solve raised an exception (its numbers are
+#: NaN and ``message`` names the error); kernel status codes are >= 0
+SCENE_ERROR = -1
+#: scenes the warning of a scan with failures names (the worst first)
+WARN_SCENES = 3
+#: characters of each scene's message quoted in that warning
+WARN_MESSAGE_CHARS = 300
+
+
+class ScanWarning(UserWarning):
+    """Some scenes of a :func:`scan` failed: issued once per scan, with the number of failed
+    scenes and flagged points and the worst scenes' parameters and messages.
+
+    ``warnings.simplefilter("error", ScanWarning)`` turns it into an error (raised after every
+    scene has run); ``ds.success``, ``ds.message`` and ``ds.status`` say which scene and point.
+    """
+
 
 # ----------------------------------------------------------------------------------------------
 # the work: one scene, one chunk of scenes (module level, so that dask can ship it)
 # ----------------------------------------------------------------------------------------------
+def _failure(what, exc) -> str:
+    """'<what> raised <Type>: <text>' for an exception of solve_contact or pull_off."""
+    text = str(exc)
+    if text.startswith(f"{what}: "):
+        text = text[len(what) + 2:]
+    return f"{what} raised {type(exc).__name__}" + (f": {text}" if text else "")
+
+
 def _solve_scene(surface, solve_kw, pressure, options):
-    """Solve one scene at every pressure; a dict of plain arrays and strings."""
+    """Solve one scene at every pressure; a dict of plain arrays and strings.
+
+    A failure of the scene does not raise: an exception of :func:`solve_contact` leaves its
+    numbers NaN with status :data:`SCENE_ERROR`, one of :func:`pull_off` leaves ``pull_off``
+    NaN, and a pull-off whose error estimate exceeds its tolerance keeps its value; each sets
+    ``success`` False and puts what failed first in ``message`` (never "ok ..."), so that one
+    scene cannot stop a scan of thousands and no failure passes as a number.
+    """
     n_p = pressure.size
     dg = solve_kw["work_of_adhesion"]
     adhesive = dg > 0.0
@@ -132,38 +175,71 @@ def _solve_scene(surface, solve_kw, pressure, options):
         "message": "ok",
         "method": "none",
     }
+    failures = []          # what failed, first in the message
+    solve_message = "ok"   # solve_contact's own message when it succeeded
     n_z = 0 if options["profile_zeta"] is None else options["profile_zeta"].size
     if options["profiles"]:
         for name in ("area_zeta", "sigma_a", "gamma_eff"):
             out[name] = np.zeros((n_p, n_z))
     if rows.size:
-        r = solve_contact(surface, pressure[rows], method=options["method"], rtol=options["rtol"],
-                          zeta=zeta, parallel=options["parallel"], **solve_kw)
-        out["area"][rows] = r.area
-        mcp = getattr(r, "mean_contact_pressure", None)
-        if mcp is None:
-            mcp = np.where(r.area > 0, r.load / np.where(r.area > 0, r.area, 1.0), np.nan)
-        out["mean_contact_pressure"][rows] = mcp
-        out["error_estimate"][rows] = r.error_estimate
-        out["status"][rows] = r.status
-        out["success"] = bool(r.success)
-        out["message"] = str(r.message)
-        out["method"] = str(r.method)
-        if options["profiles"]:
-            if not np.array_equal(r.zeta, options["profile_zeta"]):
-                raise RuntimeError("scan: a scene returned profiles on another zeta grid than "
-                                   "the scan's; pass zeta= explicitly")
-            out["area_zeta"][rows] = r.area_zeta
-            out["sigma_a"][rows] = r.sigma_a
-            out["gamma_eff"][rows] = r.gamma_eff
+        try:
+            r = solve_contact(surface, pressure[rows], method=options["method"],
+                              rtol=options["rtol"], zeta=zeta, parallel=options["parallel"],
+                              **solve_kw)
+        except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
+            for name in ("area", "mean_contact_pressure", "error_estimate", "area_zeta",
+                         "sigma_a", "gamma_eff"):
+                if name in out:
+                    out[name][:] = np.nan
+            out["status"][:] = SCENE_ERROR
+            failures.append(_failure("solve_contact", exc))
+        else:
+            out["area"][rows] = r.area
+            mcp = getattr(r, "mean_contact_pressure", None)
+            if mcp is None:
+                mcp = np.where(r.area > 0, r.load / np.where(r.area > 0, r.area, 1.0), np.nan)
+            out["mean_contact_pressure"][rows] = mcp
+            out["error_estimate"][rows] = r.error_estimate
+            out["status"][rows] = r.status
+            out["method"] = str(r.method)
+            if r.success:
+                solve_message = str(r.message)
+            else:
+                failures.append(str(r.message))
+            if options["profiles"]:
+                if not np.array_equal(r.zeta, options["profile_zeta"]):
+                    raise RuntimeError("scan: a scene returned profiles on another zeta grid "
+                                       "than the scan's; pass zeta= explicitly")
+                out["area_zeta"][rows] = r.area_zeta
+                out["sigma_a"][rows] = r.sigma_a
+                out["gamma_eff"][rows] = r.gamma_eff
     if options["pull_off"]:
         try:
-            out["pull_off"] = float(_pull_off(surface, rtol=options["pull_off_rtol"], **solve_kw))
-        except RuntimeError as exc:
-            out["pull_off"] = math.nan
-            out["success"] = False
-            note = f"pull_off failed: {exc}"
-            out["message"] = note if out["message"] == "ok" else f"{out['message']}; {note}"
+            # pull_off warns when its estimate misses rtol; info["converged"] says the same
+            # and is recorded below (the outer catch_warnings of scan undoes any interleaving
+            # of these filter changes between threads)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)
+                sigma_c, info = _pull_off(surface, rtol=options["pull_off_rtol"],
+                                          full_output=True, bracket=False, **solve_kw)
+        except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
+            out["pull_off"] = out["pull_off_error"] = math.nan
+            failures.append(_failure("pull_off", exc))
+        else:
+            out["pull_off"] = float(sigma_c)
+            out["pull_off_error"] = float(info["error_estimate"])
+            if not info["converged"]:
+                failures.append(
+                    f"pull_off did not converge: estimated error {info['error_estimate']:.3g} Pa "
+                    f"of pull_off = {sigma_c:.6g} Pa exceeds pull_off_rtol * pull_off")
+    if failures:
+        out["success"] = False
+        if solve_message != "ok":
+            failures.append(f"solve_contact: {solve_message}")
+        message = "; ".join(failures)
+        out["message"] = f"failed: {message}" if message.lower().startswith("ok") else message
+    else:
+        out["message"] = solve_message
     return out
 
 
@@ -308,8 +384,18 @@ def _check_progress(progress):
                      f"got progress = {progress!r}")
 
 
+#: relative distance from q1/q0 within which the last point of a user zeta grid counts as it
+#: (as in solve_contact, which sets that point to q1/q0 exactly)
+ZETA1_RTOL = 1e-12
+
+
 def _check_zeta(zeta, surfaces):
-    """A user zeta grid: 1-D, starting at 1, increasing, inside every scene's band."""
+    """A user zeta grid: 1-D, starting at 1, increasing, ending at every scene's q1/q0.
+
+    Checked here, before anything is solved, rather than by each scene's solve_contact (which
+    refuses such a grid too): one wrong grid is an input error of the scan, not a failure of
+    every scene.
+    """
     if zeta is None:
         return None
     z = as_float_array(zeta, "zeta", "-", ndim=(1,))
@@ -323,9 +409,15 @@ def _check_zeta(zeta, surfaces):
                          f"zeta[{i + 1}] = {z[i + 1].item()!r}")
     for label, s in surfaces:
         zeta1 = s.q1 / s.q0
-        if z[-1] > zeta1 * (1 + 1e-12):
+        if z[-1] > zeta1 * (1 + ZETA1_RTOL):
             raise ValueError(f"zeta must lie in [1, q1/q0] [-] for every scene; the scene {label} "
                              f"has q1/q0 = {zeta1!r}, got zeta[-1] = {z[-1].item()!r}")
+        if abs(z[-1] - zeta1) > ZETA1_RTOL * zeta1:
+            raise ValueError(f"zeta must end at q1/q0 [-] of every scene (area is A(zeta1)/A0); "
+                             f"the scene {label} has q1/q0 = {zeta1!r}, got zeta[-1] = "
+                             f"{z[-1].item()!r}; append q1/q0 or pass zeta=None")
+    z = z.copy()
+    z[-1] = surfaces[0][1].q1 / surfaces[0][1].q0       # as solve_contact sets it
     return z
 
 
@@ -527,7 +619,11 @@ def _run_local(grid, pressure, options, workers, progress, results):
         # closed forms are microseconds of Python (threads would only add overhead); one
         # scene or one worker: solve_contact picks its own pressure parallelism
         for index, surface, kw in grid.scenes:
-            results[index] = _solve_scene(surface, kw, pressure, options)
+            try:
+                results[index] = _solve_scene(surface, kw, pressure, options)
+            except Exception as exc:      # a failure of the scan itself, not of the scene
+                _add_note(exc, f"in scan scene {grid.labels[index]}")
+                raise
             progress.update(1)
         return "local, sequential"
     opts = dict(options, parallel=False)      # threads over scenes, serial kernels inside
@@ -683,7 +779,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         adhesive scenes' grid, which is exact for their closed form.
     pull_off : bool
         Also compute the pull-off stress of every scene with :func:`~persson_fast.pull_off`
-        (0 without adhesion; NaN, with ``success`` False, where it fails). [Pa]
+        (0 without adhesion or where the surfaces are not sticky; NaN, with ``success``
+        False, where it raises; kept, with ``success`` False, where its error estimate
+        exceeds ``pull_off_rtol``). [Pa]
     pull_off_rtol : float or None
         Relative accuracy of the pull-off stress (default ``rtol``). [-]
     client : None, "local", str or dask.distributed.Client
@@ -711,11 +809,15 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         * ``area`` (..., pressure) -- A(zeta1)/A0. [-]
         * ``mean_contact_pressure`` (..., pressure) -- load / area, NaN without contact. [Pa]
         * ``error_estimate`` (..., pressure) -- estimated absolute error of ``area``. [-]
-        * ``status`` (..., pressure) -- 0 ok, else see ``message``.
-        * ``success``, ``message``, ``method`` (...) -- per scene.
+        * ``status`` (..., pressure) -- 0 ok, else see ``message``; :data:`SCENE_ERROR`
+          (-1) where the scene's ``solve_contact`` raised.
+        * ``success``, ``message``, ``method`` (...) -- per scene. ``message`` is
+          ``solve_contact``'s message when the scene succeeded; when it failed it starts with
+          what failed (never with "ok").
         * ``area_zeta``, ``sigma_a`` [Pa], ``gamma_eff`` [J/m^2] (..., pressure, zeta) -- with
           ``profiles``.
-        * ``pull_off`` (...) -- with ``pull_off``. [Pa]
+        * ``pull_off``, ``pull_off_error`` (...) -- with ``pull_off``: the pull-off stress
+          and its estimated error. [Pa]
 
         Fixed parameters are scalar coordinates; ``attrs`` hold the surface model, method,
         rtol and how the scan ran. ``ds.to_dataframe()`` gives one row per (scene, pressure).
@@ -726,12 +828,24 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         For invalid input, naming the argument, the rule and the offending value, before
         anything is solved (every scene's surface is built and checked first).
 
+    Warns
+    -----
+    ScanWarning
+        Once per scan when any scene failed (``success`` False): the number of failed scenes
+        and of flagged (scene, pressure) points, and the parameters and messages of the
+        worst few scenes (a raised solve first, then a failed pull-off, then the most
+        flagged points).
+
     Notes
     -----
     Scene ``s`` of the grid is ``solve_contact(surface_s, pressure, e_star=..., ...)``; the
     dataset holds exactly its numbers, whichever execution path ran (see the module
-    docstring). A ``KeyboardInterrupt`` stops the scan: scenes not yet started are dropped
-    (distributed: the pending tasks are cancelled) and the interrupt propagates.
+    docstring). A scene that fails does not stop the scan: an exception raised by its
+    ``solve_contact`` or ``pull_off`` is recorded (NaN numbers, ``status`` -1 for a raised
+    solve, ``success`` False, the exception's type and text in ``message``), the other
+    scenes run on, and the scan ends with one :class:`ScanWarning`. A ``KeyboardInterrupt``
+    stops the scan: scenes not yet started are dropped (distributed: the pending tasks are
+    cancelled) and the interrupt propagates.
 
     Examples
     --------
@@ -789,10 +903,14 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         client_, own_cluster, own_client = _open_client(client)
         threads = _worker_threads(client_) if client_ is not None else workers
         bar = _Progress(progress, grid.n_scenes, _estimate_seconds(grid, p.size, options, threads))
-        if client_ is None:
-            execution = _run_local(grid, p, options, workers, bar, results)
-        else:
-            execution = _run_distributed(client_, grid, p, options, chunks, bar, results)
+        # solve_contact and pull_off change the warning filters inside each scene
+        # (catch_warnings), which is not thread-safe before Python 3.14: whatever state the
+        # scene threads interleave to is undone here, when the scan ends
+        with warnings.catch_warnings():
+            if client_ is None:
+                execution = _run_local(grid, p, options, workers, bar, results)
+            else:
+                execution = _run_distributed(client_, grid, p, options, chunks, bar, results)
     finally:
         if bar is not None:
             bar.close()
@@ -801,11 +919,45 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         if own_cluster is not None:
             own_cluster.close()
     wall = time.perf_counter() - t0
-    return _assemble(xr, grid, p, results, options, profile_zeta,
-                     {"surface_model": grid.factory_name, "method": method, "rtol": rtol,
-                      "pull_off_rtol": pull_off_rtol if pull_off else "",
-                      "execution": execution, "wall_time_s": wall,
-                      "persson_fast_version": __version__})
+    ds = _assemble(xr, grid, p, results, options, profile_zeta,
+                   {"surface_model": grid.factory_name, "method": method, "rtol": rtol,
+                    "pull_off_rtol": pull_off_rtol if pull_off else "",
+                    "execution": execution, "wall_time_s": wall,
+                    "persson_fast_version": __version__})
+    summary = _failure_summary(grid, results, p.size)
+    if summary is not None:
+        warnings.warn(summary, ScanWarning, stacklevel=2)
+    return ds
+
+
+def _failure_summary(grid, results, n_p):
+    """The text of the scan's one ScanWarning; None when every scene succeeded."""
+    failed = [i for i, res in enumerate(results) if not res["success"]]
+    if not failed:
+        return None
+    flagged = [int(np.count_nonzero(res["status"])) for res in results]
+
+    def severity(i):
+        res = results[i]
+        no_numbers = bool(np.any(res["status"] == SCENE_ERROR))
+        no_pull_off = math.isnan(res.get("pull_off", 0.0))
+        return (no_numbers, no_pull_off, flagged[i])
+
+    worst = sorted(failed, key=severity, reverse=True)[:WARN_SCENES]   # stable: grid order
+    n_points = sum(flagged)
+    lines = [f"scan: {len(failed)} of {grid.n_scenes} scenes failed (success False) and "
+             f"{n_points} of {grid.n_scenes * n_p} (scene, pressure) points are flagged "
+             f"(status != 0): a failed solve or pull-off is NaN, a flagged or unconverged value "
+             f"is kept; see ds.success, ds.message and ds.status. "
+             f"{'The worst' if len(failed) > len(worst) else 'Failed'}:"]
+    for i in worst:
+        msg = str(results[i]["message"])
+        if len(msg) > WARN_MESSAGE_CHARS:
+            msg = msg[:WARN_MESSAGE_CHARS - 3] + "..."
+        lines.append(f"  {grid.labels[i]}: {msg}")
+    if len(failed) > len(worst):
+        lines.append(f"  ... and {len(failed) - len(worst)} more")
+    return "\n".join(lines)
 
 
 def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
@@ -829,8 +981,10 @@ def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
         "error_estimate": (per_p, stack("error_estimate", float, (n_p,)),
                            {"long_name": "estimated absolute error of area", "units": "-"}),
         "status": (per_p, stack("status", np.int64, (n_p,)),
-                   {"long_name": "status per pressure (0 ok, see message)"}),
-        "success": (dims, stack("success", bool), {"long_name": "all pressures solved"}),
+                   {"long_name": f"status per pressure (0 ok, {SCENE_ERROR} the scene's solve "
+                                 f"raised, others a kernel code; see message)"}),
+        "success": (dims, stack("success", bool),
+                    {"long_name": "scene solved: every pressure (and the pull-off) ok"}),
         "message": (dims, stack("message", object).astype(str), {"long_name": "solver message"}),
         "method": (dims, stack("method", object).astype(str),
                    {"long_name": "method that produced the numbers"}),
@@ -854,4 +1008,6 @@ def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
     if options["pull_off"]:
         data["pull_off"] = (dims, stack("pull_off", float),
                             {"long_name": "pull-off stress sigma_c", "units": "Pa"})
+        data["pull_off_error"] = (dims, stack("pull_off_error", float),
+                                  {"long_name": "estimated error of pull_off", "units": "Pa"})
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -1,8 +1,10 @@
 """Tests of persson_fast.scan: labels and values against direct solve_contact calls, input
 validation, the distributed path (bitwise equal to the local one), interrupts, progress."""
+import dataclasses
 import importlib
 import threading
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -115,7 +117,8 @@ def test_adhesive_scan_equals_direct_calls(adhesive_scan):
         assert plain.area.values[0] == 0.0 and np.isnan(plain.mean_contact_pressure.values[0])
         assert _bitwise_equal(plain.area.values[1:], r0.area)
         assert _bitwise_equal(plain.area_zeta.values[1:], r0.area_zeta)
-        assert float(plain.pull_off) == 0.0
+        assert float(plain.pull_off) == 0.0 and float(plain.pull_off_error) == 0.0
+        assert bool(plain.success) and plain.message.values == "ok"   # no adhesion: no pull-off
         # with adhesion: all pressures, the default zeta grid, pull-off
         adh = ds.isel(temperature=i, work_of_adhesion=1)
         r1 = pf.solve_contact(surface, P_ADH, e_star=E_STAR, work_of_adhesion=0.06, rtol=1e-3)
@@ -182,6 +185,7 @@ def _sa(**extra):
     ({"profiles": "yes"}, r"profiles must be True or False"),
     ({"zeta": [1.0, 1e6]}, r"zeta must lie in \[1, q1/q0\].*1000000\.0"),
     ({"zeta": [2.0, 3.0]}, r"zeta must start at 1"),
+    ({"zeta": [1.0, 1e3]}, r"zeta must end at q1/q0.*\(hurst=0\.7\).*100000\.0.*1000\.0"),
     ({"client": 42}, r"client must be None, 'local', a scheduler address or a dask"),
     ({"surface": SEED, "params": {"hurst": [0.5]}}, r"params\['hurst'\] is a surface parameter"),
     ({"params": {"hurst": 0.8, "h_rms": 1e-6, "q0": 1e4, "q1": [1e8, 1e9]}, "profiles": True},
@@ -227,6 +231,131 @@ def test_keyboard_interrupt_local_leaves_no_threads():
         scan(pf.SelfAffine, params, P_PLAIN[1:], e_star=1e9, method="cn", rtol=1e-3,
              workers=2, progress=interrupt)
     assert not [t for t in threading.enumerate() if t.name.startswith("persson-scan")]
+
+
+# ---------------------------------------------------------------------------------------------
+# failures: recorded per scene, never "ok ...", one warning per scan
+# ---------------------------------------------------------------------------------------------
+SA_CN = {"hurst": [0.6, 0.7, 0.8], "h_rms": 1e-6, "q0": 1e4, "q1": 1e8}
+
+
+def _scan_warnings(record):
+    return [w for w in record if w.category.__name__ == "ScanWarning"]
+
+
+def _fail_at(monkeypatch, name, hursts, exc):
+    """Make scan's ``name`` (``solve_contact`` or ``_pull_off``) raise ``exc`` for the scenes
+    whose surface has one of the Hurst exponents ``hursts``."""
+    real = getattr(scan_module, name)
+
+    def fake(surface, *args, **kwargs):
+        if getattr(surface, "hurst", None) in hursts:
+            raise exc
+        return real(surface, *args, **kwargs)
+
+    monkeypatch.setattr(scan_module, name, fake)
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_scene_that_raises_is_recorded_and_the_scan_goes_on(monkeypatch, workers):
+    _fail_at(monkeypatch, "solve_contact", (0.7,), ValueError("boom in scene 0.7"))
+    filters = list(warnings.filters)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        ds = scan(pf.SelfAffine, SA_CN, P_PLAIN[1:], e_star=1e9, method="cn", rtol=1e-3,
+                  workers=workers, progress=False)
+    assert ds.attrs["execution"] == ("local, sequential" if workers == 1
+                                     else "local, 2 threads over scenes")
+    np.testing.assert_array_equal(ds.success.values, [True, False, True])
+    bad = ds.sel(hurst=0.7)
+    assert np.all(np.isnan(bad.area.values)) and np.all(np.isnan(bad.error_estimate.values))
+    assert np.all(bad.status.values == scan_module.SCENE_ERROR)
+    assert bad.message.values == "solve_contact raised ValueError: boom in scene 0.7"
+    for h in (0.6, 0.8):                                   # the other scenes: as direct calls
+        r = pf.solve_contact(pf.SelfAffine(hurst=h, h_rms=1e-6, q0=1e4, q1=1e8), P_PLAIN[1:],
+                             e_star=1e9, method="cn", rtol=1e-3)
+        assert _bitwise_equal(ds.area.sel(hurst=h).values, r.area)
+        assert ds.message.sel(hurst=h).values == r.message == "ok"
+    (w,) = _scan_warnings(record)
+    text = str(w.message)
+    assert "1 of 3 scenes failed" in text
+    assert "(hurst=0.7): solve_contact raised ValueError: boom in scene 0.7" in text
+    assert list(warnings.filters) == filters               # no filter leaks from the threads
+
+
+def test_failed_message_never_starts_with_ok(monkeypatch):
+    # solve_contact succeeds with a note ("ok; ...", as when it cannot check separated
+    # tensions against the pull-off stress), then the scene's pull-off fails
+    real_solve = scan_module.solve_contact
+
+    def noted(surface, *args, **kwargs):
+        r = real_solve(surface, *args, **kwargs)
+        return dataclasses.replace(r, message=r.message + "; a note")
+
+    monkeypatch.setattr(scan_module, "solve_contact", noted)
+    _fail_at(monkeypatch, "_pull_off", (0.7,),
+             RuntimeError("pull_off: the contact branch could not be followed"))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        ds = scan(pf.SelfAffine, SA_CN, P_PLAIN, e_star=1e9, pull_off=True, progress=False)
+    np.testing.assert_array_equal(ds.success.values, [True, False, True])
+    assert ds.message.sel(hurst=0.6).values == "ok; a note"    # a success keeps its message
+    failed = str(ds.message.sel(hurst=0.7).values)
+    assert not failed.lower().startswith("ok")
+    assert failed == ("pull_off raised RuntimeError: the contact branch could not be followed; "
+                      "solve_contact: ok; a note")
+    assert np.isnan(ds.pull_off.sel(hurst=0.7)) and float(ds.pull_off.sel(hurst=0.6)) == 0.0
+    assert np.all(np.isfinite(ds.area.sel(hurst=0.7).values))  # the solve itself succeeded
+    assert len(_scan_warnings(record)) == 1
+
+
+def test_failures_warn_once_with_count_and_worst_scenes(monkeypatch):
+    hursts = [0.5, 0.6, 0.7, 0.8, 0.9]
+    _fail_at(monkeypatch, "_pull_off", (0.5, 0.6), RuntimeError("pull_off: no branch"))
+    _fail_at(monkeypatch, "solve_contact", (0.8, 0.9), FloatingPointError("overflow"))
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        ds = scan(pf.SelfAffine, {**SA_CN, "hurst": hursts}, P_PLAIN, e_star=1e9,
+                  pull_off=True, progress=False)
+    np.testing.assert_array_equal(ds.success.values, [False, False, True, False, False])
+    assert all(not m.startswith("ok") for m in ds.message.values[[0, 1, 3, 4]])
+    assert [w.category.__name__ for w in record] == ["ScanWarning"]       # one warning only
+    assert issubclass(record[0].category, UserWarning)
+    text = str(record[0].message)
+    n_points = 2 * P_PLAIN.size                # the raised solves: every pressure flagged
+    assert "4 of 5 scenes failed" in text and f"{n_points} of {5 * P_PLAIN.size}" in text
+    # the worst first: no numbers at all (a raised solve), then a failed pull-off
+    named = [line.split(":")[0].strip() for line in text.splitlines()[1:]]
+    assert named == ["(hurst=0.8)", "(hurst=0.9)", "(hurst=0.5)", "... and 1 more"]
+    assert "FloatingPointError: overflow" in text and "pull_off raised RuntimeError" in text
+    assert record[0].filename == __file__                # points at the caller of scan
+
+
+def test_unconverged_pull_off_is_flagged_and_kept(monkeypatch):
+    def unconverged(surface, **kwargs):
+        warnings.warn("pull_off: estimated error exceeds rtol", RuntimeWarning)
+        info = {"converged": False, "error_estimate": 2.5e3}
+        return (1.5e5, info) if kwargs.get("full_output") else 1.5e5
+
+    monkeypatch.setattr(scan_module, "_pull_off", unconverged)
+    with warnings.catch_warnings(record=True) as record:
+        warnings.simplefilter("always")
+        ds = scan(SEED, {"e_star": [1e9, 2e9]}, [1e6], pull_off=True, progress=False)
+    assert not ds.success.values.any()
+    np.testing.assert_array_equal(ds.pull_off.values, [1.5e5, 1.5e5])   # the value is kept
+    np.testing.assert_array_equal(ds.pull_off_error.values, [2.5e3, 2.5e3])
+    assert all(m.startswith("pull_off did not converge: estimated error 2.5e+03 Pa")
+               for m in ds.message.values)
+    # pull_off's own RuntimeWarning per scene is replaced by the scan's one warning
+    assert [w.category.__name__ for w in record] == ["ScanWarning"]
+    assert "2 of 2 scenes failed" in str(record[0].message)
+
+
+def test_scan_without_failures_does_not_warn():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        ds = scan(pf.SelfAffine, SA_PARAMS, P_PLAIN, e_star=1e9, pull_off=True, progress=False)
+    assert bool(ds.success.all())
 
 
 # ---------------------------------------------------------------------------------------------
