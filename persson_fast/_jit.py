@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numba
 
-__all__ = ["njit_serial", "njit_parallel", "njit_sweeps", "prange"]
+__all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange"]
 
 prange = numba.prange
 
@@ -20,6 +20,17 @@ prange = numba.prange
 def njit_serial(func):
     """Compile ``func`` in nopython mode, cached on disk, no fastmath."""
     return numba.njit(cache=True, fastmath=False, nogil=True, error_model="numpy")(func)
+
+
+def njit_inline(func):
+    """Like :func:`njit_serial`, but inlined into compiled callers at numba IR level.
+
+    For thin wrappers only: a call boundary between compiled functions costs a whole extra
+    optimisation of everything below it at compile time (each numba function is finalised
+    with its callees linked in), and nothing at run time once inlined.
+    """
+    return numba.njit(cache=True, fastmath=False, nogil=True, error_model="numpy",
+                      inline="always")(func)
 
 
 def njit_parallel(func):

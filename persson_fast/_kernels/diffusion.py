@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 
-from .._jit import njit_serial
+from .._jit import njit_inline, njit_serial
 from . import status as st
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf, ndtr
 from .tridiag import fitted_diffusion, theta_step, theta_workspace
@@ -549,7 +549,7 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
                       out_load, out_det_area, out_det_load, out_error, counts)
 
 
-@njit_serial
+@njit_inline
 def solve_variant(variant, G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
                   out_det_area, out_det_load, out_error, counts):
     """One pressure with grid variant ``variant`` (CN, CN_PLAIN, IMPLICIT_EULER)."""
