@@ -34,8 +34,33 @@ With adhesion::
 A non-zero status is one of :mod:`persson_fast._kernels.status` (``STATUS_MESSAGES`` says
 what it means); check it as you would a result's ``status``. ``adhesive_area`` is the same
 two-grid, Richardson-extrapolated fixed point as :func:`persson_fast.solve_contact`.
+
+Every entry point checks its arguments first (O(n) reads, no allocation; valid input gives
+bitwise the results of the raw kernels). A bad argument solves nothing: the area is NaN
+(``diffusion_solve`` fills all its outputs with NaN) and the status names the argument --
+the first failing row of this table:
+
+============  ====  ======================================================================
+status        code  rule broken
+============  ====  ======================================================================
+BAD_RTOL      11    ``rtol`` finite and in [RTOL_MIN, RTOL_MAX] = [1e-12, 0.1] (the range
+                    of the Python layer)
+BAD_PRESSURE  10    ``sigma0`` / ``pressure`` finite (any sign)
+BAD_G         12    ``G``: at least one point, finite, ``G[0] >= 0``, non-decreasing
+BAD_SIGMA_A   13    ``sigma_a``: the length of ``G``, finite
+BAD_INPUT     5     ``diffusion_solve`` only: ``n_damp >= 0`` and every output of G's length
+BAD_SCENE     14    ``adhesive_area`` only: ``scene`` as :func:`adhesive_scene` builds it --
+                    each grid's G at least 2 points, finite, ``G[0] >= 0``, non-decreasing;
+                    c of G's length, wa and wb one shorter, all finite and >= 0; the energy
+                    correction finite and <= 1 (< 0: S = 1); the stress scale finite, > 0
+============  ====  ======================================================================
+
+The codes are importable as ``persson_fast._kernels.status.BAD_RTOL`` etc. (integers, so
+your ``@njit`` code can compare with them).
 """
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -46,14 +71,83 @@ from ._kernels.diffusion import solve_one
 from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
 
 __all__ = ["diffusion_area", "diffusion_solve", "adhesive_scene", "adhesive_area",
-           "STATUS_MESSAGES"]
+           "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
 
 STATUS_MESSAGES = _status.STATUS_MESSAGES
 
-#: the one-pressure diffusion solve: ``diffusion_solve(G, sigma_a, sigma0, rtol, n_damp,
-#: out_area, out_load, out_detached_area, out_detached_load, out_error) -> status``, every
-#: output an (n,) array written in place (see :func:`persson_fast._kernels.diffusion.solve_grid`)
-diffusion_solve = solve_one
+#: the tolerances the entry points accept (those of the Python layer's ``_check_rtol``)
+RTOL_MIN = 1e-12
+RTOL_MAX = 0.1
+
+
+@njit_serial
+def _rtol_ok(rtol):
+    return RTOL_MIN <= rtol <= RTOL_MAX      # False for NaN
+
+
+@njit_serial
+def _times_ok(G, n_min):
+    """G holds >= n_min points, G[0] >= 0, non-decreasing, finite (False for any NaN)."""
+    n = G.shape[0]
+    if n < n_min or n == 0 or not G[0] >= 0.0:
+        return False
+    for k in range(1, n):
+        if not G[k] >= G[k - 1]:
+            return False
+    return G[n - 1] < math.inf
+
+
+@njit_serial
+def _finite_ok(x, n, lower):
+    """x holds n finite values, each >= lower (-inf: any)."""
+    if x.shape[0] != n:
+        return False
+    for k in range(n):
+        if not (x[k] >= lower and x[k] < math.inf):
+            return False
+    return True
+
+
+@njit_serial
+def _diffusion_args_status(G, sigma_a, sigma0, rtol):
+    """The first failing argument rule of a diffusion solve (see the module table), or 0."""
+    if not _rtol_ok(rtol):
+        return _status.BAD_RTOL
+    if not math.isfinite(sigma0):
+        return _status.BAD_PRESSURE
+    if not _times_ok(G, 1):
+        return _status.BAD_G
+    if not _finite_ok(sigma_a, G.shape[0], -math.inf):
+        return _status.BAD_SIGMA_A
+    return _status.OK
+
+
+@njit_serial
+def diffusion_solve(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load, out_detached_area,
+                    out_detached_load, out_error):
+    """The one-pressure diffusion solve, every output an (n,) array written in place.
+
+    ``diffusion_solve(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load,
+    out_detached_area, out_detached_load, out_error) -> status``: the "cn" kernel
+    :func:`persson_fast._kernels.diffusion.solve_one` (outputs as in ``solve_grid``). The
+    arguments are checked first (module table): on a bad one every output is filled with
+    NaN and its code returned.
+    """
+    s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
+    n = G.shape[0]
+    if s == _status.OK and (n_damp < 0 or out_area.shape[0] != n or out_load.shape[0] != n
+                            or out_detached_area.shape[0] != n
+                            or out_detached_load.shape[0] != n or out_error.shape[0] != n):
+        s = _status.BAD_INPUT
+    if s != _status.OK:
+        out_area[:] = np.nan
+        out_load[:] = np.nan
+        out_detached_area[:] = np.nan
+        out_detached_load[:] = np.nan
+        out_error[:] = np.nan
+        return s
+    return solve_one(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load, out_detached_area,
+                     out_detached_load, out_error)
 
 
 @njit_serial
@@ -61,8 +155,11 @@ def diffusion_area(G, sigma_a, sigma0, rtol):
     """(A(G[-1]) / A0, status) of one pressure with the wall at -sigma_a(G).
 
     G: (n,) non-decreasing, G[0] >= 0; sigma_a: (n,); sigma0, rtol: floats (consistent
-    units: stress and sqrt(G) alike).
+    units: stress and sqrt(G) alike). A bad argument gives (NaN, its code): module table.
     """
+    s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
+    if s != _status.OK:
+        return np.nan, s
     n = G.shape[0]
     a = np.empty(n)
     ld = np.empty(n)
@@ -118,13 +215,40 @@ def _fixed_point_area(G, c, wa, wb, gamma_s, sigma0, rtol):
 
 
 @njit_serial
+def _scene_grid_ok(G, c, wa, wb):
+    """One grid of a scene: G of >= 2 points (as _times_ok), c (n,), wa, wb (n - 1,), all
+    finite and >= 0."""
+    n = G.shape[0]
+    return (_times_ok(G, 2) and _finite_ok(c, n, 0.0) and _finite_ok(wa, n - 1, 0.0)
+            and _finite_ok(wb, n - 1, 0.0))
+
+
+@njit_serial
+def _adhesive_args_status(scene, pressure, rtol):
+    """The first failing argument rule of adhesive_area (see the module table), or 0."""
+    Gc, cc, wac, wbc, Gf, cf, waf, wbf, gamma_s, scale = scene
+    if not _rtol_ok(rtol):
+        return _status.BAD_RTOL
+    if not math.isfinite(pressure):
+        return _status.BAD_PRESSURE
+    if not (_scene_grid_ok(Gc, cc, wac, wbc) and _scene_grid_ok(Gf, cf, waf, wbf)
+            and gamma_s <= 1.0 and math.isfinite(gamma_s)
+            and 0.0 < scale < math.inf):
+        return _status.BAD_SCENE
+    return _status.OK
+
+
+@njit_serial
 def adhesive_area(scene, pressure, rtol):
     """(A(zeta1) / A0, status) of one nominal pressure [Pa] (tension < 0 allowed).
 
     ``scene`` from :func:`adhesive_scene`; the fixed point of seed Eqs. 8-9 on both nested
     grids, Richardson-extrapolated (as :func:`persson_fast.solve_contact`, without its
-    warm start of the fine grid).
+    warm start of the fine grid). A bad argument gives (NaN, its code): module table.
     """
+    s = _adhesive_args_status(scene, pressure, rtol)
+    if s != _status.OK:
+        return np.nan, s
     Gc, cc, wac, wbc, Gf, cf, waf, wbf, gamma_s, scale = scene
     p = pressure / scale
     ac, sc = _fixed_point_area(Gc, cc, wac, wbc, gamma_s, p, rtol)

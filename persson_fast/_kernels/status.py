@@ -10,6 +10,12 @@ NOT_CONVERGED = 6      # a fixed point (adhesion) did not reach its tolerance
 NEGATIVE_DENSITY = 7   # the stress distribution became markedly negative (ringing)
 WALL_JUMP = 8          # the wall jumped (flat G): accuracy after a jump is below the scheme's order
 LOST_CONTACT = 9       # adhesion, tension: separated, although pull_off finds contact there
+# argument checks of the compiled entry points in persson_fast.embed (area NaN, nothing solved)
+BAD_PRESSURE = 10      # the pressure (sigma0) is not finite
+BAD_RTOL = 11          # rtol is not finite or outside [1e-12, 0.1]
+BAD_G = 12             # G is empty, not finite, negative at G[0] or decreasing
+BAD_SIGMA_A = 13       # sigma_a is not finite or not of the length of G
+BAD_SCENE = 14         # the adhesive scene tuple is not one adhesive_scene builds
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -26,4 +32,14 @@ STATUS_MESSAGES = {
                    "exclude it within its error estimate): the fixed point on this zeta grid "
                    "lost the end of the contact branch (use a smaller rtol, or pull_off for the "
                    "pull-off stress)"),
+    BAD_PRESSURE: ("pressure (sigma0) must be finite [Pa; in diffusion_area and diffusion_solve "
+                   "the stress unit of sqrt(G)]; nothing solved"),
+    BAD_RTOL: "rtol must be finite and lie in [1e-12, 0.1] [-]; nothing solved",
+    BAD_G: ("G must hold at least one finite diffusion time, G[0] >= 0, non-decreasing "
+            "[stress^2]; nothing solved"),
+    BAD_SIGMA_A: "sigma_a must be finite and have the length of G [stress]; nothing solved",
+    BAD_SCENE: ("scene must be the tuple embed.adhesive_scene returns: G of at least 2 finite "
+                "non-decreasing times from G[0] >= 0, c of G's length and wa, wb one shorter, "
+                "all finite and >= 0, energy correction finite and <= 1, stress scale finite "
+                "and > 0 (build it again with adhesive_scene); nothing solved"),
 }
