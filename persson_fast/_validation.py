@@ -77,3 +77,19 @@ def check_choice(value, name: str, choices) -> None:
     if value not in choices:
         valid = ", ".join(repr(c) for c in choices)
         raise ValueError(f"{name} must be one of {valid}; got {value!r}")
+
+
+def optional_import(module: str, extra: str, what: str):
+    """Import an optional dependency, or raise a ModuleNotFoundError naming the extra.
+
+    ``what`` says what needs it, e.g. ``"pf.scan"``; the message gives the install command.
+    """
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        raise ModuleNotFoundError(
+            f"{what} needs the optional package {module!r}, which is not installed; install the "
+            f"{extra!r} extra: python -m pip install \"persson_fast[{extra}]\" (in a checkout: "
+            f"python -m pip install -e \".[{extra}]\")", name=module) from exc

@@ -66,7 +66,8 @@ from concurrent.futures import ThreadPoolExecutor, wait, FIRST_COMPLETED
 
 import numpy as np
 
-from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
+from ._validation import (as_float_array, check_finite, check_nonnegative, check_positive,
+                          optional_import)
 from .adhesion import adhesion_zeta
 from .adhesion import pull_off as _pull_off
 from .api import _check_rtol, default_zeta, solve_contact
@@ -585,7 +586,7 @@ class _Progress:
             and (total > PROGRESS_MIN_SCENES or estimate > PROGRESS_MIN_SECONDS)
             and _stderr_is_terminal())
         if show:
-            from tqdm import tqdm
+            tqdm = optional_import("tqdm", "scan", "a scan's progress bar").tqdm
 
             self.bar = tqdm(total=total, unit="scene", desc="scan", file=sys.stderr,
                             dynamic_ncols=True)
@@ -672,7 +673,7 @@ def _worker_threads(client) -> int:
 
 
 def _run_distributed(client, grid, pressure, options, chunks, progress, results):
-    from distributed import as_completed
+    as_completed = optional_import("distributed", "scan", "pf.scan(client=...)").as_completed
 
     opts = dict(options, parallel=False)
     if chunks is None:
@@ -710,7 +711,8 @@ def _open_client(client):
     if client is None:
         return None, None, None
     if isinstance(client, str):
-        from distributed import Client, LocalCluster
+        distributed = optional_import("distributed", "scan", "pf.scan(client=...)")
+        Client, LocalCluster = distributed.Client, distributed.LocalCluster
 
         if client == "local":
             cluster = LocalCluster(n_workers=None, threads_per_worker=1, processes=True,
@@ -855,7 +857,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     >>> ds.area.dims
     ('hurst', 'h_rms', 'pressure')
     """
-    import xarray as xr
+    xr = optional_import("xarray", "scan", "pf.scan")
 
     from . import __version__
 

@@ -440,3 +440,13 @@ def test_own_local_cluster_is_closed_after_interrupt(monkeypatch):
              chunks=1, progress=interrupt)
     assert len(created) == 2
     assert all(str(c.status.name) == "closed" for c in created)
+
+
+def test_missing_extra_names_the_extra(monkeypatch):
+    """Without xarray, pf.scan says which extra to install instead of a bare import error."""
+    import sys
+
+    monkeypatch.setitem(sys.modules, "xarray", None)
+    with pytest.raises(ModuleNotFoundError, match=r"persson_fast\[scan\]"):
+        pf.scan(pf.SelfAffine, {"hurst": [0.7, 0.8], "h_rms": 1e-6, "q0": 1e4, "q1": 1e9},
+                np.array([1e6]), e_star=1e9)
