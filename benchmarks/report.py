@@ -408,14 +408,14 @@ def write_markdown(path, meta, rows, orders, auto, scaling, compile_t, adhesive_
     if compile_t:
         L.append("## Compile time\n")
         L.append("Fresh processes sharing one empty numba cache folder (`benchmarks/compile_time.py`): "
-                 "import, `warmup()` (serial, parallel and adhesive kernels), then a first "
+                 "import, `warmup()` (sweep and adhesive kernels), then a first "
                  "128-pressure `cn` call.\n")
-        L.append("| run | import [s] | warmup serial [s] | warmup parallel [s] | first call [s] | process [s] |")
+        L.append("| run | import [s] | warmup serial [s] | warmup adhesion [s] | first call [s] | process [s] |")
         L.append("|---|---|---|---|---|---|")
         for name in ("cold", "cached"):
             c = compile_t[name]
             L.append(f"| {name} | {c['import']:.2f} | {c['warmup_serial']:.2f} | "
-                     f"{c['warmup_parallel']:.2f} | {c['first_cn']:.2f} | {c['process']:.1f} |")
+                     f"{c['warmup_adhesion']:.2f} | {c['first_cn']:.2f} | {c['process']:.1f} |")
         L.append("")
     path.write_text("\n".join(L))
 
@@ -434,7 +434,7 @@ def main(argv=None) -> int:
     def log(msg):
         print(f"[{time.perf_counter() - t_start:6.1f} s] {msg}", flush=True)
 
-    pf.warmup(parallel=not args.quick)
+    pf.warmup(prange=not args.quick)
     warm_methods()
     full = not args.quick
     # ladders up to each method's work cap (cn 6: ~3e-11, fixed-grid 5 and implicit-euler 6:
