@@ -1,8 +1,14 @@
 """The only place that sets numba options.
 
-* serial kernels: ``cache=True`` (compiled once per machine, reused by later processes);
-* parallel sweeps: ``parallel=True`` **without** ``cache`` -- caching parallel functions from
-  several processes at once is known to crash (numba issue 4807);
+* serial kernels: ``cache=True`` (compiled once per machine, reused by later processes); the
+  default parallel driver (:func:`persson_fast.sweep.run_rows`) runs them on a pool of Python
+  threads (they release the GIL), so it needs nothing else compiled;
+* ``prange`` sweeps (``parallel="prange"`` only): ``parallel=True`` **without** ``cache`` --
+  caching parallel functions from several processes at once is known to crash (numba issue
+  4807);
+* thin wrappers: ``inline="always"`` (:func:`njit_inline`), which spares compiled callers a
+  call boundary (numba finalises every function with its callees linked in and optimised
+  again, so each boundary re-optimises everything below it);
 * ``fastmath`` stays off: the accuracy tests are written for IEEE arithmetic.
 
 Setting the environment variable ``NUMBA_DISABLE_JIT=1`` runs every kernel as plain Python,
