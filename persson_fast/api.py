@@ -18,7 +18,7 @@ from .adhesion import solve_adhesive_contact
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
 from .surfaces import check_e_star
-from .sweep import run_sweep
+from .sweep import check_parallel, run_sweep
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
 
@@ -385,10 +385,12 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
         beyond it raises a ValueError (append ``surface.q1 / surface.q0``). Default: 8 per
         decade plus the spectrum's breakpoints (without adhesion),
         :func:`persson_fast.adhesion_zeta` (with it). [-]
-    parallel : bool or None
-        Spread pressures over threads. None: when the parallel kernel is compiled (it is not
-        cached on disk; ``pf.warmup()`` compiles it, ~4 s) and there are >= 4 pressures, or
-        for >= 1000 pressures.
+    parallel : None, bool, "threads" or "prange"
+        Spread pressures over threads. None (default): a pool of one thread per numba thread
+        for >= 4 pressures, running the disk-cached serial kernels (nothing extra to
+        compile; results bitwise those of False); True or "threads": the pool always;
+        "prange": numba's prange sweeps (compiled once per process, not cached); False: one
+        thread. See :func:`persson_fast.sweep.choose_parallel`.
     adhesion_controls : dict or None
         Fixed-point controls: ``max_iter`` (100), ``m_hist`` (Anderson depth, 5; 0 = plain
         relaxation), ``omega`` (relaxation, 0.5), ``n_damp`` (2).
@@ -411,6 +413,7 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     diffusion numerically (the same kernel the adhesive problem uses).
     """
     method = check_method(method)
+    check_parallel(parallel)
     rtol = _check_rtol(rtol)
     e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
                                     energy_correction)
