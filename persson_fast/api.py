@@ -7,6 +7,7 @@ import warnings
 import numpy as np
 
 from . import analytic
+from ._kernels.status import GRID_CAP
 from ._validation import (
     as_float_array,
     check_finite,
@@ -18,6 +19,7 @@ from .adhesion import solve_adhesive_contact
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
 from .surfaces import check_e_star
+from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
@@ -65,7 +67,12 @@ def _is_linear(G: np.ndarray, rows: np.ndarray) -> bool:
     return bool(np.all(np.abs(rows - pred) <= 1e-12 * (1.0 + np.abs(pred))))
 
 
-def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=2,
+#: solve_diffusion with a callable wall: pressures per kernel call such that the (block, n_s)
+#: outputs on the sampled schedule hold at most this many values each (16 MB)
+_WALL_BLOCK_ELEMENTS = 2_000_000
+
+
+def solve_diffusion(G, pressure, sigma_a=0.0, *, kinks=None, method="cn", rtol=1e-6, n_damp=2,
                     parallel=None, level=None) -> DiffusionResult:
     """Solve the stress diffusion with a prescribed absorbing wall.
 
@@ -77,9 +84,19 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
     pressure : float or array_like, shape (n_p,)
         Nominal stress sigma0 (compressive > 0). Negative values need a wall with
         sigma_a > 0; at or below -sigma_a(0) the surfaces are separated (A = 0). [Pa]
-    sigma_a : float or array_like, shape (n_t,) or (n_p, n_t)
-        Detachment stress: the wall sits at -sigma_a(G), linear in G between the given points
-        and equal to sigma_a[0] before G[0]. [Pa]
+    sigma_a : float, array_like of shape (n_t,) or (n_p, n_t), or callable
+        Detachment stress: the wall sits at -sigma_a(G). Samples: linear in G between the
+        given points and equal to sigma_a[0] before G[0]; their interpolation is the wall
+        (its error against a curve they were taken from is not part of rtol). A vectorised
+        callable ``G [Pa^2] -> sigma_a [Pa]`` (one wall for every pressure; called on arrays,
+        must return finite values of the same shape on [0, G[-1]]) is followed from G = 0 and
+        sampled by :func:`persson_fast.walls.sample_wall` finely enough that its
+        piecewise-linear error is part of rtol; results are still reported at G only. [Pa]
+    kinks : array_like or None
+        Only with a callable sigma_a: diffusion times where the wall's slope jumps, put on
+        the schedule exactly. Kinks not declared are found by the adaptive sampling (which
+        puts a sample next to them, within ~1e-3 of the tolerance). A callable that jumps is
+        refused (give such a wall as samples with a repeated G). [Pa^2]
     method : str
         A name in :data:`persson_fast.METHODS`: "cn" (default), "cn-plain",
         "implicit-euler", "fixed-grid", "bnr", "analytic" (a wall linear in G, zero
@@ -94,10 +111,9 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
     n_damp : int
         Crank-Nicolson steps replaced by implicit-Euler half steps after a wall jump
         (Rannacher damping), >= 0.
-    parallel : bool or None
-        Spread pressures over threads. None: when the parallel kernel is compiled (it is not
-        cached on disk; ``pf.warmup()`` compiles it, ~4 s) and there are >= 4 pressures, or
-        for >= 1000 pressures.
+    parallel : None, bool, "threads" or "prange"
+        Spread pressures over threads, as in :func:`solve_contact` (default: a thread pool
+        over the disk-cached serial kernels for >= 4 pressures, bitwise equal to False).
 
     Returns
     -------
@@ -109,20 +125,53 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
     (seed Eqs. 4, 7 in diffusion time G). The "cn" scheme is described in
     :mod:`persson_fast._kernels.diffusion`; its order after extrapolation is 4 for smooth
     walls.
+
+    A callable wall is sampled on 0, G, ``kinks`` and adaptively inserted points until its
+    chord deviates from it by at most WALL_BUDGET * rtol * min(sqrt(2G), 1/|v|)
+    * exp(gap^2/4G) / L (module :mod:`persson_fast.walls`: a comparison-principle bound on
+    the area error, v = dsigma_a/dG where the wall moves into the distribution, gap the
+    distance sigma0 + sigma_a(G) of the smallest pressure in contact, L the e-folds of G in
+    which the wall meets the distribution); the deviation falls as (spacing)^2, so smooth
+    walls need ~rtol^(-1/2) samples (about 8e4 for 0.1 + 0.5 sqrt(G) over 4 decades at rtol
+    = 1e-8). ``method="auto"`` takes "analytic" only when the samples are exactly linear
+    (a linear callable), else "cn"; "bnr" and "fixed-grid" receive the same samples ("bnr"
+    grades every sample like a kink: its cost grows with their number). More than
+    ``walls.MAX_POINTS`` samples: the refinement stops, status GRID_CAP and the message
+    says so. ``timings["sample_wall"]`` is the sampling time; ``sigma_a`` of the result is
+    the callable at G.
     """
     method = check_method(method)
+    check_parallel(parallel)
     rtol = _check_rtol(rtol)
     G = as_float_array(G, "G", "Pa^2", ndim=(1,))
     if G.size == 0:
         raise ValueError("G must hold at least one diffusion time [Pa^2]; got an empty array")
     check_nonnegative(G, "G", "Pa^2")
     check_nondecreasing(G, "G", "Pa^2")
-    sa = as_float_array(sigma_a, "sigma_a", "Pa", ndim=(0, 1, 2))
-    check_finite(sa, "sigma_a", "Pa")
-    has_wall = bool(np.any(sa != 0))
-    p = _check_pressure(pressure, allow_negative=has_wall)
-    n_p, n_t = p.size, G.size
-    if sa.ndim == 0:
+    wall = None
+    if callable(sigma_a):
+        # a wall as a function: sampled below to the tolerance, on a schedule that holds G
+        t_wall = time.perf_counter()
+        at_user = check_wall_callable(sigma_a, G)
+        p = _check_pressure(pressure, allow_negative=True)
+        n_p, n_t = p.size, G.size
+        wall = sample_wall(sigma_a, G, p, rtol, kinks, at_user=at_user)
+        t_wall = time.perf_counter() - t_wall
+        rows = np.broadcast_to(at_user, (n_p, n_t)).copy()
+        sa = wall.sigma_a                      # 1-D: one wall for every pressure
+    elif kinks is not None:
+        raise ValueError("kinks applies to a callable sigma_a (samples are linear between "
+                         "their points already: put a sample at each kink); got kinks = "
+                         f"{kinks!r} with sigma_a given as samples")
+    else:
+        sa = as_float_array(sigma_a, "sigma_a", "Pa", ndim=(0, 1, 2))
+        check_finite(sa, "sigma_a", "Pa")
+        has_wall = bool(np.any(sa != 0))
+        p = _check_pressure(pressure, allow_negative=has_wall)
+        n_p, n_t = p.size, G.size
+    if wall is not None:
+        pass                                   # rows: the callable at G, set above
+    elif sa.ndim == 0:
         rows = np.full((n_p, n_t), float(sa))
     elif sa.ndim == 1:
         if sa.size != n_t:
@@ -139,14 +188,17 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
     if level is not None and (isinstance(level, bool) or not isinstance(level, (int, np.integer))
                               or not 0 <= level <= 10):
         raise ValueError(f"level must be an integer in [0, 10] [-] or None; got level = {level!r}")
+    # the schedule the kernels see: the user's G, or the sampled callable's (it holds G)
+    G_s, rows_s = (G, rows) if wall is None else (wall.G, np.broadcast_to(sa, (n_p, sa.size)))
     if sa.ndim == 0:
         linear, jumps = True, False          # a wall at rest
     else:
-        distinct = rows if sa.ndim == 2 else rows[:1]
-        linear = _is_linear(G, distinct)
-        jumps = bool(np.any((np.diff(G) == 0)[None, :] & (np.diff(distinct, axis=1) != 0)))
+        distinct = rows_s if sa.ndim == 2 else rows_s[:1]
+        linear = _is_linear(G_s, distinct)
+        jumps = bool(np.any((np.diff(G_s) == 0)[None, :] & (np.diff(distinct, axis=1) != 0)))
     # a moving wall held at sigma_a[0] before G[0] > 0 is not one linear law from G = 0
-    starts_late = bool(G[0] > 0 and sa.ndim > 0 and np.any(distinct != distinct[:, :1]))
+    # (a callable wall is followed from G = 0: its schedule starts there)
+    starts_late = bool(G_s[0] > 0 and sa.ndim > 0 and np.any(distinct != distinct[:, :1]))
     kind = "linear" if (linear and not starts_late) else ("jumps" if jumps else "smooth")
     use = choose_auto(kind) if method == "auto" else method
     check_serves(use, jumps=jumps, nonlinear=not linear)
@@ -154,13 +206,44 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, method="cn", rtol=1e-6, n_damp=
         raise ValueError("level applies to compiled methods only; got method = 'analytic'")
     t0 = time.perf_counter()
     if use == "analytic":
-        out = _analytic_linear(G, rows, p)
+        out = _analytic_linear(G_s, rows_s, p)
         timings = {"solve": time.perf_counter() - t0}
-    else:
-        out, timings = run_sweep(G, rows, p, rtol=rtol, method=use,
+    elif wall is None:
+        out, timings = run_sweep(G_s, rows_s, p, rtol=rtol, method=use,
                                  level=-1 if level is None else int(level),
                                  n_damp=int(n_damp), parallel=parallel)
+    else:
+        # a long schedule: pressures in blocks, so the (block, n_s) kernel outputs stay small;
+        # results are kept at the user's G only
+        names = ("area", "load", "detached_area", "detached_load", "error_estimate")
+        out = {name: np.zeros((n_p, n_t)) for name in names}
+        out["status"] = np.zeros(n_p, dtype=np.int64)
+        out["counts"] = np.zeros((n_p, 3), dtype=np.int64)
+        timings = {}
+        block = max(1, _WALL_BLOCK_ELEMENTS // G_s.size)
+        for lo in range(0, n_p, block):
+            hi = min(n_p, lo + block)
+            part, t_part = run_sweep(G_s, rows_s[lo:hi], p[lo:hi], rtol=rtol, method=use,
+                                     level=-1 if level is None else int(level),
+                                     n_damp=int(n_damp), parallel=parallel)
+            for name in names:
+                out[name][lo:hi] = part[name][:, wall.index]
+            out["status"][lo:hi] = part["status"]
+            out["counts"][lo:hi] = part["counts"]
+            for key, value in t_part.items():
+                timings[key] = timings.get(key, 0.0) + value
+    if wall is not None:
+        timings = {"sample_wall": t_wall, **timings}
+        if use == "analytic":
+            for name in ("area", "load", "detached_area", "detached_load", "error_estimate"):
+                out[name] = np.ascontiguousarray(out[name][:, wall.index])
+        if wall.capped:
+            out["status"] = np.where(out["status"] == 0, GRID_CAP, out["status"])
     success, message = summarize_status(out["status"])
+    if wall is not None and wall.capped:
+        message += (f"; the callable sigma_a needed more than {wall.G.size} samples for rtol "
+                    f"(largest wall deviation {wall.worst_ratio:.3g} times its tolerance): "
+                    f"use a larger rtol, declare kinks=, or give samples")
     return DiffusionResult(
         G=G, pressure=p, sigma_a=rows, area=out["area"], load=out["load"],
         detached_area=out["detached_area"], detached_load=out["detached_load"],
