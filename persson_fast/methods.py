@@ -12,6 +12,18 @@ Every entry says:
 * ``adhesion`` -- whether it can serve the self-consistent fixed point of seed Eqs. 8-9;
 * ``jumps`` -- whether it can serve a wall that jumps (a flat stretch of G);
 * ``nonlinear`` -- whether it can serve a wall that is not linear in G.
+
+What the grid methods report as ``error_estimate`` (the estimated error of the *returned*
+area, at every returned G): each solve runs three resolutions in exact 2:1 ratio (N/2, N,
+2N nodes; steps alike). ``cn`` returns the Richardson extrapolation of the two finer runs and
+estimates its error as |R(h) - R(2h)|/7 (R(2h) the extrapolation of the two coarser runs;
+7 = 2^3 - 1, i.e. assuming order 3 where smooth walls show 3.6-4, so the estimate is about 2x
+the error there); ``cn-plain`` and ``implicit-euler`` return the finest run, with the
+Richardson estimate |F - C|/(2^p - 1), p = 2 or 1. Where the ratio of successive differences
+is far from 2^p (the ladder is not in its asymptotic range) the larger, un-extrapolated
+difference is reported. With ``rtol`` given (no explicit ``level``), a result whose estimate
+exceeds rtol A + 1e-12 at any returned G is refined (nodes and steps doubled) up to the work
+cap, and flagged (status 15, RTOL_NOT_MET, or 4, GRID_CAP) when it still misses.
 """
 from __future__ import annotations
 

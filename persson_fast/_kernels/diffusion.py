@@ -30,7 +30,12 @@ to rounding error (far-field leakage aside, which is reported).
 The start is an exact solution at a small G_s (free Gaussian or the linearly moving wall),
 projected onto the grid so that its discrete area and first moment are exact. The two runs
 (N, M) and (2N, 2M) are combined by Richardson extrapolation, which cancels the leading
-O(h^2 + dt^2) error; their difference is the reported error estimate.
+O(h^2 + dt^2) error. A third run (N/2, M/2) gives a second extrapolated value, and the
+error estimate is that of the returned value (:func:`_ladder_estimate`); with a tolerance
+the ladder is refined (nodes and steps doubled) while the estimate misses it, up to the work
+cap (then RTOL_NOT_MET or GRID_CAP). The work cap is judged by the steps the tolerance needs
+(not those a dense schedule forces) and splits its cut between nodes and steps by the time
+order (implicit Euler: nodes f^(1/3), steps f^(2/3)), so that a tighter rtol never buys less.
 """
 from __future__ import annotations
 
@@ -58,6 +63,10 @@ WORK_GROWTH_MAX = 30.0  # below rtol = 1e-6 the cap grows as (1e-6/rtol)^(1/2), 
                         # plain "cn" scene does, up to this factor (rtol = 1.1e-9)
 MAX_LEVELS = 8        # at most 2^8 times finer at the start than at the end
 N_MAX = 4096          # node cap of the coarse grid
+MAX_REFINE = 3        # a-posteriori refinements at most (each doubles nodes and steps)
+ASYMPTOTIC_SLACK = 2.0  # successive ladder differences within this factor of 2^p: asymptotic
+RTOL_ATOL = 1e-12     # absolute part of the accuracy contract |dA| <= rtol A + RTOL_ATOL
+EXTRAPOLATED_ORDER = 3.0  # order assumed for the extrapolated error estimate (measured 3.6-4)
 LEAK_TOL = 1e-10      # far-field leakage above this is flagged
 K_LAYER = 1.0         # after a cut, the wall layer is smoothed over a diffusion time K_LAYER h^2
 GAUSS3_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
@@ -545,23 +554,73 @@ def solve_one(G, sa, sigma0, rtol, n_damp, out_area, out_load, out_det_area, out
     """The "cn" variant of :func:`solve_grid` at tolerance ``rtol`` (no work counts)."""
     counts = np.zeros(3, dtype=np.int64)
     sx, stp, theta, extrapolate, work_max = variant_resolution(CN, rtol, np.int64(-1))
-    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp, out_area,
-                      out_load, out_det_area, out_det_load, out_error, counts)
+    return _solve_grid_tol(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp, rtol,
+                           out_area, out_load, out_det_area, out_det_load, out_error, counts)
 
 
 @njit_inline
 def solve_variant(variant, G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
                   out_det_area, out_det_load, out_error, counts):
-    """One pressure with grid variant ``variant`` (CN, CN_PLAIN, IMPLICIT_EULER)."""
+    """One pressure with grid variant ``variant`` (CN, CN_PLAIN, IMPLICIT_EULER).
+
+    With ``level`` < 0 the resolution follows from ``rtol`` and the result is refined until
+    its error estimate meets ``rtol`` (or the work cap: then flagged); an explicit
+    ``level`` >= 0 is solved at that resolution only.
+    """
     sx, stp, theta, extrapolate, work_max = variant_resolution(variant, rtol, level)
-    return solve_grid(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp, out_area,
-                      out_load, out_det_area, out_det_load, out_error, counts)
+    return _solve_grid_tol(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp,
+                           rtol if level < 0 else 0.0, out_area, out_load, out_det_area,
+                           out_det_load, out_error, counts)
+
+
+@njit_serial
+def _ladder_estimate(area_b, area_c, area_f, i_first, extrapolate, order, rtol, est):
+    """Error estimate of the returned area from three runs in exact 2:1 ratio; True when it
+    meets ``rtol`` (|error| <= rtol A + RTOL_ATOL at every output, or ``rtol`` <= 0).
+
+    B, C, F: the runs at spacing 4h, 2h, h (steps alike). The result is the Richardson
+    extrapolation R = (4F - C)/3 of the order-2 pair (``extrapolate``), else F (scheme order
+    ``order``). With d1 = C - B, d2 = F - C, a ladder in its asymptotic range has
+    d1/d2 ~ 2^p (p = 2 for the pair): then the error of R is |R(h) - R(2h)|/(2^q - 1),
+    R(h) - R(2h) = (4 d2 - d1)/3, taken with q = EXTRAPOLATED_ORDER = 3 (the order the
+    extrapolated results show on moving and kinked walls, 3 to 4: at order 4 the estimate
+    is about 2x the error, at order 2 about 0.6x); the error of F is |d2|/(2^order - 1).
+    Where the ratio is off by more than ASYMPTOTIC_SLACK (or the signs differ) the ladder
+    is not asymptotic and the larger, un-extrapolated measure is taken as well: |d2|/3 for
+    R (the error of F), |d2| for F. A non-finite B (the coarsest run) leaves the
+    un-extrapolated measure.
+    """
+    met = True
+    q = 4.0 if extrapolate else 2.0 ** order
+    for k in range(i_first, area_f.shape[0]):
+        d1 = area_c[k] - area_b[k]
+        d2 = area_f[k] - area_c[k]
+        if extrapolate:
+            e_lo = abs(4.0 * d2 - d1) / (3.0 * (2.0 ** EXTRAPOLATED_ORDER - 1.0))
+            e_hi = abs(d2) / 3.0
+            a = area_f[k] + d2 / 3.0
+        else:
+            e_lo = abs(d2) / (q - 1.0)
+            e_hi = abs(d2)
+            a = area_f[k]
+        asym = d1 * d2 > 0.0 and abs(d1) <= q * ASYMPTOTIC_SLACK * abs(d2) and \
+            q * abs(d2) <= ASYMPTOTIC_SLACK * abs(d1)
+        e = e_lo if asym else max(e_lo, e_hi)
+        if not math.isfinite(e):
+            e = e_hi
+        if not math.isfinite(e):
+            met = False
+        est[k] = e
+        if e > rtol * min(max(a, 0.0), 1.0) + RTOL_ATOL:
+            met = False
+    return met or rtol <= 0.0
 
 
 @njit_serial
 def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_damp,
                out_area, out_load, out_det_area, out_det_load, out_error, counts):
-    """Contact area and load bookkeeping of one nominal pressure, in consistent units.
+    """Contact area and load bookkeeping of one nominal pressure, in consistent units, at a
+    given resolution (no a-posteriori refinement: see :func:`solve_variant`).
 
     Parameters
     ----------
@@ -578,8 +637,9 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
     n_damp : int -- Crank-Nicolson steps replaced by two implicit-Euler half steps after
         each wall jump (Rannacher damping).
     out_* : (n_t,) float64 -- area A/A0, load int sigma P, detached area, detached load
-        int sigma_a g dG, and an error estimate of the area.
-    counts : (3,) int64 -- set to the coarse nodes, then steps and node-steps of both runs.
+        int sigma_a g dG, and an error estimate of the returned area (from a third run
+        (N/2, M/2), see :func:`_ladder_estimate`).
+    counts : (3,) int64 -- set to the coarse nodes, then steps and node-steps of all runs.
 
     Returns
     -------
@@ -589,6 +649,18 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
     -----
     The whole computation is scale-free: units only need to be consistent
     (stress and sqrt(G) in the same unit).
+    """
+    return _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max,
+                           n_damp, 0.0, out_area, out_load, out_det_area, out_det_load,
+                           out_error, counts)
+
+
+@njit_serial
+def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_damp,
+                    rtol, out_area, out_load, out_det_area, out_det_load, out_error, counts):
+    """:func:`solve_grid` with a-posteriori control: while the error estimate of the returned
+    area misses ``rtol`` (``rtol`` > 0) the ladder is refined (nodes and steps doubled) up to
+    the work cap; a result that still misses it is flagged RTOL_NOT_MET.
     """
     nt = G.shape[0]
     if sa.shape[0] != nt or out_area.shape[0] != nt:
@@ -703,8 +775,47 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
             if v > pe:
                 pe = v
     xi_max = xi_far + K_DOMAIN
-    if pe * h_c > PECLET_MAX:
-        h_c = PECLET_MAX / pe
+    h_top = 0.25
+    if pe * h_top > PECLET_MAX:
+        h_top = PECLET_MAX / pe
+    if h_c > h_top:
+        h_c = h_top
+    # work cap, judged by the resolution the tolerance needs: the coarse steps the step
+    # densities ask for, not rounded up per schedule piece (densely sampled schedules force
+    # extra steps, which are not needed resolution); past work_max the node spacing and the
+    # step are coarsened together, balanced by the scheme's order in time (CN: h^2 + dt^2,
+    # both by f^(1/2); implicit Euler: h^2 + dt, nodes by f^(1/3), steps by f^(2/3)), so
+    # that more work always buys a better answer
+    m_need = 0.0
+    g_prev = g_start
+    for k in range(i_first, nt + 1):
+        g_k = G_k[k]
+        if g_k <= g_prev:
+            continue
+        sa_prev = boundary_at(G_k, sa_k, g_prev)
+        pw = nper_width if sa_k[k] < sa_prev else nper_width * RECEDING_FACTOR
+        m_need += max(math.log(g_k / g_prev) * nper,
+                      abs(sa_k[k] - sa_prev) / math.sqrt(2.0 * g_prev) * pw)
+        g_prev = g_k
+    if m_need < 1.0:
+        m_need = 1.0
+    work_need = m_need * xi_max / h_c
+    if work_need > work_max:
+        status = st.GRID_CAP
+        f_cut = work_max / work_need
+        f_x = f_cut ** (1.0 / 3.0) if theta > 0.75 else math.sqrt(f_cut)
+        h_new = h_c / f_x
+        if h_new > h_top:
+            h_new = max(h_c, h_top)
+        f_t = f_cut * h_new / h_c
+        h_c = h_new
+        nper *= f_t
+        nper_width *= f_t
+        if nper < 0.05:
+            nper = 0.05
+        if nper_width < 0.05:
+            nper_width = 0.05
+        work_need = work_max
     # the start may be narrower than h_c resolves: begin finer, then coarsen by factors of 2
     # each time the profile width (sqrt(2G)/w, at most 1/sqrt 2) has grown past r_std new
     # spacings
@@ -722,71 +833,82 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
         hh *= 2.0
         s2 = (r_std * hh) ** 2
         coarsen_at[k] = s2 / (2.0 - 4.0 * s2) if s2 < 0.4 else np.inf
-    block = 1 << n_levels
+    # the coarse grid is a multiple of 2 * 2^n_levels, so that the ladder's half grid
+    # coarsens as often as the others
+    block = 2 << n_levels
     n_c = int(math.ceil(xi_max / (h_0 * block))) * block
-    if n_c < 16 * block:
-        n_c = 16 * block
+    if n_c < 8 * block:
+        n_c = 8 * block
     if n_c > N_MAX:
         n_c = (N_MAX // block) * block
         status = st.GRID_CAP
     h_c = xi_max / n_c
-    # work cap: estimate the coarse steps as march will take them; past work_max node-steps
-    # the step densities (then the grid) are reduced and the result is flagged
-    m_est = 0.0
-    g_prev = g_start
-    for k in range(i_first, nt + 1):
-        g_k = G_k[k]
-        if g_k <= g_prev:
-            continue
-        sa_prev = boundary_at(G_k, sa_k, g_prev)
-        m_l = math.ceil(math.log(g_k / g_prev) * nper)
-        pw = nper_width if sa_k[k] < sa_prev else nper_width * RECEDING_FACTOR
-        m_w = math.ceil(abs(sa_k[k] - sa_prev) / math.sqrt(2.0 * g_prev) * pw)
-        m_est += max(m_l, m_w, 1.0)
-        g_prev = g_k
-    m_est += n_levels
-    if m_est * n_c > work_max:
-        status = st.GRID_CAP
-        f_cut = work_max / (m_est * n_c)
-        nper *= f_cut
-        nper_width *= f_cut
-        if nper < 0.05:
-            nper = 0.05
-        if nper_width < 0.05:
-            nper_width = 0.05
-    # two resolutions for Richardson extrapolation
-    n_f = 2 * n_c
-    nf1 = n_f + 1
-    p = np.empty(nf1)
-    tmp = np.empty(nf1)
-    lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(nf1)
-    ca = np.empty(nt + 1)
-    cl = np.empty(nt + 1)
-    cd = np.empty(nt + 1)
-    cdl = np.empty(nt + 1)
-    fa = np.empty(nt + 1)
-    fl = np.empty(nt + 1)
-    fd = np.empty(nt + 1)
-    fdl = np.empty(nt + 1)
-    counts[0] = n_c + 1
-    s1, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_c + 1,
-                  h_c, nper, nper_width, np.int64(1), n_damp, theta, coarsen_at, p[: n_c + 1],
-                  tmp[: n_c + 1], lo, di, up, a_lo, a_di, a_up, rhs, scratch, ca, cl, cd, cdl,
-                  counts)
-    s2, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_f + 1,
-                  0.5 * h_c, nper, nper_width, np.int64(2), n_damp, theta, coarsen_at, p, tmp, lo, di,
-                  up, a_lo, a_di, a_up, rhs, scratch, fa, fl, fd, fdl, counts)
-    if s1 != st.OK:
-        status = s1
-    if s2 != st.OK:
-        status = s2
-    # Richardson weights of an order-2 pair, or the finer run (error: the difference)
+    cap_status = status
+    # the ladder: run j has n_c 2^(j-1) intervals and 2^j times the steps of run 0; the
+    # result is the pair (j-1, j) (extrapolated or the finer), its error estimate uses run
+    # j-2 too (see _ladder_estimate); refine (j += 1) while the estimate misses rtol
+    n_half = n_c // 2
+    nper_h = 0.5 * nper
+    nper_width_h = 0.5 * nper_width
+    order = 2.0 if theta < 0.75 else 1.0
+    size = 2 * n_c + 1
+    p = np.empty(size)
+    tmp = np.empty(size)
+    lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(size)
+    r_area = np.empty((3, nt + 1))
+    r_load = np.empty((3, nt + 1))
+    r_det = np.empty((3, nt + 1))
+    r_det_load = np.empty((3, nt + 1))
+    run_status = np.zeros(3, dtype=np.int64)
+    est = np.zeros(nt + 1)
+    j = 0
+    met = True
+    while True:
+        n_j = n_half << j
+        if n_j + 1 > size:
+            size = n_j + 1
+            p = np.empty(size)
+            tmp = np.empty(size)
+            lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(size)
+        slot = j % 3
+        s_j, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_j + 1,
+                       2.0 * h_c / (1 << j), nper_h, nper_width_h, np.int64(1 << j), n_damp,
+                       theta, coarsen_at, p[: n_j + 1], tmp[: n_j + 1], lo, di, up, a_lo, a_di,
+                       a_up, rhs, scratch, r_area[slot], r_load[slot], r_det[slot],
+                       r_det_load[slot], counts)
+        run_status[slot] = s_j
+        if j >= 2:
+            sb = (j - 2) % 3
+            sc = (j - 1) % 3
+            met = _ladder_estimate(r_area[sb], r_area[sc], r_area[slot], i_first, extrapolate,
+                                   order, rtol, est)
+            if met or rtol <= 0.0:
+                break
+            # refine: the next pair's coarse run does 4^(j-1) times the coarse work of the
+            # first pair
+            if (j - 2 >= MAX_REFINE or 4.0 ** (j - 1) * work_need > work_max
+                    or (n_half << j) > N_MAX):
+                break
+        j += 1
+    counts[0] = (n_half << (j - 1)) + 1
+    # a work-capped grid whose estimate meets rtol is no longer flagged (bnr does the same)
+    if cap_status == st.GRID_CAP and met and rtol > 0.0:
+        status = st.OK
+    elif not met and rtol > 0.0 and status == st.OK:
+        status = st.RTOL_NOT_MET
+    # the flags of the returned pair (the coarsest run only serves the estimate)
+    for k in range(2):
+        s_k = run_status[(j - 1 + k) % 3]
+        if s_k != st.OK:
+            status = s_k
+    sc = (j - 1) % 3
+    sf = j % 3
+    # Richardson weights of an order-2 pair, or the finer run
     wf = 4.0 / 3.0 if extrapolate else 1.0
     wc = wf - 1.0
-    err_div = 3.0 if extrapolate else 1.0
     for k in range(i_first, nt + 1):
-        a = wf * fa[k] - wc * ca[k]
-        d = wf * fd[k] - wc * cd[k]
+        a = wf * r_area[sf, k] - wc * r_area[sc, k]
+        d = wf * r_det[sf, k] - wc * r_det[sc, k]
         # the extrapolation may overshoot [0, 1] by rounding-size amounts: clip, keeping
         # A + detached = 1
         if a > 1.0:
@@ -796,10 +918,10 @@ def solve_grid(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_max, n_
             d += a
             a = 0.0
         out_area[k - 1] = a
-        out_load[k - 1] = (wf * fl[k] - wc * cl[k]) * y0
+        out_load[k - 1] = (wf * r_load[sf, k] - wc * r_load[sc, k]) * y0
         out_det_area[k - 1] = d
-        out_det_load[k - 1] = (wf * fdl[k] - wc * cdl[k]) * y0
-        out_error[k - 1] = abs(fa[k] - ca[k]) / err_div
+        out_det_load[k - 1] = (wf * r_det_load[sf, k] - wc * r_det_load[sc, k]) * y0
+        out_error[k - 1] = est[k]
         if not math.isfinite(a):
             status = st.NONFINITE
     return status

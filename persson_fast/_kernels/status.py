@@ -16,6 +16,8 @@ BAD_RTOL = 11          # rtol is not finite or outside [1e-12, 0.1]
 BAD_G = 12             # G is empty, not finite, negative at G[0] or decreasing
 BAD_SIGMA_A = 13       # sigma_a is not finite or not of the length of G
 BAD_SCENE = 14         # the adhesive scene tuple is not one adhesive_scene builds
+RTOL_NOT_MET = 15      # the error estimate of the result exceeds rtol after refining to the work cap
+WALL_THINNED = 16      # bnr: more G points than its node cap allows; solved on a subset of them
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -42,4 +44,11 @@ STATUS_MESSAGES = {
                 "non-decreasing times from G[0] >= 0, c of G's length and wa, wb one shorter, "
                 "all finite and >= 0, energy correction finite and <= 1, stress scale finite "
                 "and > 0 (build it again with adhesive_scene); nothing solved"),
+    RTOL_NOT_MET: ("the error estimate exceeds rtol after refining up to the work cap: the "
+                   "result is less accurate than asked (error_estimate says by how much; a "
+                   "kinked or fast wall converges slowly)"),
+    WALL_THINNED: ("more G points than the node cap of the bnr solver allows: the result is that "
+                   "of a wall through a subset of them (every m-th sample of a smooth stretch, "
+                   "kinks kept, the other points interpolated); error_estimate includes the "
+                   "estimated thinning error (use fewer G points, or another method)"),
 }
