@@ -68,8 +68,26 @@ Resolution
 doubles every segment's interval count; level 0 is a coarse base with phi step H_LEVEL0).
 ``level = -1``: the base phi step is H_REF (rtol / 1e-6)^(1/4); when the estimate exceeds
 rtol A + ATOL at some schedule point the step is reduced by (SAFETY / excess)^(1/4) and the
-three runs are repeated, up to N_MAX nodes in the finest run (then GRID_CAP, with the best
+three runs are repeated, up to N_MAX nodes in the finest run (then RTOL_NOT_MET, with the best
 result reached).
+
+Plain samples and thinning
+--------------------------
+A slope change at a schedule point is treated as a kink (graded as above) unless it is a plain
+sample of a smooth wall (:func:`_plain_breaks`): both adjacent pieces at most PLAIN_DLN long in
+ln t and its curvature (slope jump over the mean adjacent piece length) within KINK_RATIO of a
+neighbour's. A plain sample ends a uniform segment (a node sits on it, no grading, one interval
+at least). Its sqrt(t - t_k) terms then leave an h^1.5 error term, so after the first plain
+sample the two Richardson steps remove h^1.5 and h^2 instead (measured order 2.5 on 300 samples
+of 0.1 + 0.5 sqrt(G); the estimate |R_2N - R_N| / 3 is conservative there, 10-100 times the
+error). Sparse samples stay graded and fourth order. When more schedule points remain than the
+node cap allows even at the coarsest step, the smooth stretches are thinned (every m-th plain
+point, kinks and flat-G points kept), the wall through the kept points is solved, the dropped
+points are interpolated (quadratic in G of the detached area and load), and the status is
+WALL_THINNED; the error estimate adds |A_m - A_2m| (the same solve with stride 2m) and the
+interpolation gap. In the rtol mode the area is never NaN (except NONFINITE / BAD_INPUT, or
+when the kinks alone exceed the cap: GRID_CAP); a refinement stopped by the cap or the attempt
+limit returns its finest result with RTOL_NOT_MET.
 
 Cost
 ----
@@ -120,6 +138,12 @@ ATOL = 1e-12          # absolute floor of the area tolerance in the rtol mode
 ROUND_FLOOR = 2e-15   # absolute rounding floor of 1 - int g (and of the truncation at t_s)
 MERGE_TOL = 1e-13     # collinear schedule points (relative) belong to one linear piece
 NEWTON_ITERS = 60
+# plain samples: a slope change at a schedule point is a sample of a smooth wall, not a kink,
+# when the neighbouring pieces are short (at most PLAIN_DLN in ln t) and its curvature
+# (slope jump over the mean adjacent piece length) is within KINK_RATIO of a neighbour's
+PLAIN_DLN = 0.1
+KINK_RATIO = 4.0
+PLAIN_EXP = 1.5       # leading error exponent of a grid with plain samples (sqrt(t - t_k) terms)
 
 # map types of a segment: 0 uniform, 1 graded at the left end, 2 graded at the right end,
 # 3 graded at both ends
@@ -380,8 +404,45 @@ def _segment_counts(seg_ld, seg_nmin, n_seg, h_u, seg_n):
 
 
 @njit_serial
+def _plain_breaks(tp, sp, n_pc, t_end, plain):
+    """Mark the piece starts tp[i] (i >= 1) that are plain samples of a smooth wall: plain[i].
+
+    A slope jump ds_i = sp[i] - sp[i-1] at a sample of a smooth wall shrinks with the local
+    spacing: its curvature ds_i / (mean adjacent piece length) agrees with its neighbours'. A kink
+    keeps a finite jump however dense the samples, so its curvature stands out (more than
+    KINK_RATIO times both neighbours'). Only densely sampled stretches (adjacent pieces at most
+    PLAIN_DLN long in ln t) are candidates: a sparse sample is graded like a kink (that is cheap
+    and keeps the fourth order there). Returns the number of plain samples.
+    """
+    curv = np.zeros(n_pc + 1)
+    dense = np.zeros(n_pc + 1, dtype=np.bool_)
+    for i in range(n_pc + 1):
+        plain[i] = False
+    for i in range(1, n_pc):
+        t_l = tp[i - 1]
+        t_m = tp[i]
+        t_r = tp[i + 1] if i + 1 < n_pc else t_end
+        if t_l > 0.0 and t_r > t_m:
+            dense[i] = (math.log(t_m / t_l) <= PLAIN_DLN and math.log(t_r / t_m) <= PLAIN_DLN)
+        curv[i] = abs(sp[i] - sp[i - 1]) / (0.5 * (t_r - t_l))
+    n_plain = 0
+    for i in range(1, n_pc):
+        if not dense[i]:
+            continue
+        ref = 0.0
+        if i > 1 and curv[i - 1] > ref:
+            ref = curv[i - 1]
+        if i + 1 < n_pc and curv[i + 1] > ref:
+            ref = curv[i + 1]
+        if curv[i] <= KINK_RATIO * ref:
+            plain[i] = True
+            n_plain += 1
+    return n_plain
+
+
+@njit_serial
 def _triple(mult, seg_ta, seg_tb, seg_pa, seg_pb, seg_kind, seg_n, seg_cs, seg_piece, n_seg,
-            sk, tp, bp, sp, f_d, f_e, err, scratch, counts):
+            sk, tp, bp, sp, f_d, f_e, err, scratch, counts, seg_plain):
     """Runs at mult, 2 mult and 4 mult times the base counts and two Richardson steps.
 
     With D_h the trapezoid result at step h, R_h = (4 D_{h/2} - D_h) / 3 removes h^2 and
@@ -417,7 +478,18 @@ def _triple(mult, seg_ta, seg_tb, seg_pa, seg_pb, seg_kind, seg_n, seg_cs, seg_p
     counts[0] = n2
     if s2 != st.OK:
         return s2
+    r_plain = 2.0 ** PLAIN_EXP
     for q in range(n_seg):
+        if seg_plain[q]:
+            # plain samples before: D = I + a h^1.5 + b h^2 + ...; remove h^1.5, then h^2
+            ra = (r_plain * d1[q] - d0[q]) / (r_plain - 1.0)
+            rb = (r_plain * d2[q] - d1[q]) / (r_plain - 1.0)
+            f_d[q] = (4.0 * rb - ra) / 3.0
+            err[q] = abs(rb - ra) / 3.0
+            ra = (r_plain * e1[q] - e0[q]) / (r_plain - 1.0)
+            rb = (r_plain * e2[q] - e1[q]) / (r_plain - 1.0)
+            f_e[q] = (4.0 * rb - ra) / 3.0
+            continue
         ra = (4.0 * d1[q] - d0[q]) / 3.0
         rb = (4.0 * d2[q] - d1[q]) / 3.0
         f_d[q] = (8.0 * rb - ra) / 7.0
@@ -428,9 +500,12 @@ def _triple(mult, seg_ta, seg_tb, seg_pa, seg_pb, seg_kind, seg_n, seg_cs, seg_p
     return st.OK
 
 
+NOTHING_FIT = -1      # internal: not even the coarsest triple fits under N_MAX (rtol mode)
+
+
 @njit_serial
-def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, out_det_load,
-                  out_error, counts):
+def _solve_core(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, out_det_load,
+                out_error, counts):
     """Contact area and load bookkeeping of one nominal pressure from the BNR integral equation.
 
     Parameters
@@ -559,6 +634,8 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
             x_hi = mid
     t_s = math.exp(x_lo)
     sk = math.sqrt(L_START * t_s)
+    plain_pc = np.zeros(n_pc + 1, dtype=np.bool_)
+    _plain_breaks(tp, sp, n_pc, t_end, plain_pc)
     # --- segments: between t_s and the schedule points after it; grading at kinks ---------
     max_seg = 3 * (m_pts + 1)
     seg_ta = np.empty(max_seg)
@@ -572,6 +649,8 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
     seg_cs = np.empty(max_seg)
     seg_piece = np.empty(max_seg, dtype=np.int64)
     seg_sched = np.empty(max_seg, dtype=np.int64)   # index into tk_s of the end, or -1
+    seg_plain = np.zeros(max_seg, dtype=np.bool_)   # a plain sample at or before the start
+    seen_plain = False
     n_seg = 0
     ta = t_s
     k_first = 1
@@ -582,10 +661,12 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         _, piece = _wall_at(tp, bp, sp, n_pc, 0.5 * (ta + tb))
         slope = sp[piece]
         # kinks: a piece starts at ta (> t_s) / a new piece starts at tb (< t_end)
-        kl = ta > t_s and tp[piece] == ta and piece > 0
+        kl = ta > t_s and tp[piece] == ta and piece > 0 and not plain_pc[piece]
+        if ta > t_s and tp[piece] == ta and piece > 0 and plain_pc[piece]:
+            seen_plain = True
         kr = False
         if piece + 1 < n_pc and tp[piece + 1] == tb and k < m_pts - 1:
-            kr = True
+            kr = not plain_pc[piece + 1]
         if slope > 0.0:
             cs = C_APPROACH * slope
         else:
@@ -621,6 +702,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
                 seg_cs[n_seg] = cs
                 seg_piece[n_seg] = piece
                 seg_sched[n_seg] = k if q == nc - 1 else -1
+                seg_plain[n_seg] = seen_plain
                 dens = 1.0 if kinds[q] == MAP_UNIFORM else DENS_LEFT
                 nmin = N_MIN_SEG if kinds[q] == MAP_UNIFORM else N_MIN_GRADED
                 seg_ld[n_seg] = (cuts[q + 1] - cuts[q]) * dens
@@ -648,6 +730,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
             seg_cs[n_seg] = cs
             seg_piece[n_seg] = piece
             seg_sched[n_seg] = k
+            seg_plain[n_seg] = seen_plain
             seg_ld[n_seg] = ell * dens
             seg_nmin[n_seg] = nmin
             n_seg += 1
@@ -669,7 +752,8 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         _segment_counts(seg_ld, seg_nmin, n_seg, H_LEVEL0, seg_n)
         mult = 1 << min(level, 30)
         status = _triple(mult, seg_ta, seg_tb, seg_pa, seg_pb, seg_kind, seg_n, seg_cs,
-                         seg_piece, n_seg, sk, tp, bp, sp, f_d, f_e, err, scratch, counts)
+                         seg_piece, n_seg, sk, tp, bp, sp, f_d, f_e, err, scratch, counts,
+                         seg_plain)
         if status != st.OK:
             nan = math.nan
             fill_state(np.int64(0), nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
@@ -692,10 +776,11 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         for attempt in range(MAX_ATTEMPTS):
             _segment_counts(seg_ld, seg_nmin, n_seg, h_u, seg_n)
             s3 = _triple(1, seg_ta, seg_tb, seg_pa, seg_pb, seg_kind, seg_n, seg_cs,
-                         seg_piece, n_seg, sk, tp, bp, sp, t_d, t_e, t_err, scratch, counts)
+                         seg_piece, n_seg, sk, tp, bp, sp, t_d, t_e, t_err, scratch, counts,
+                         seg_plain)
             work += counts[1]
             if s3 == st.GRID_CAP:
-                status = st.GRID_CAP
+                status = st.RTOL_NOT_MET if have else NOTHING_FIT
                 break
             if s3 != st.OK:
                 status = s3
@@ -715,7 +800,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
             if worst <= 1.0:
                 break
             if attempt == MAX_ATTEMPTS - 1:
-                status = st.GRID_CAP
+                status = st.RTOL_NOT_MET
                 break
             # error ~ h^4: aim at SAFETY of the tolerance, at least 15 % finer
             shrink = (SAFETY / worst) ** 0.25
@@ -730,7 +815,7 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
             nan = math.nan
             fill_state(np.int64(0), nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
                   out_det_load, out_error)
-            return status if status != st.OK else st.GRID_CAP
+            return status if status != st.OK else NOTHING_FIT
     counts[2] = counts[1]
     # --- outputs --------------------------------------------------------------------------
     q = 0
@@ -764,6 +849,213 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
             status = st.NONFINITE
     return status
 
+
+
+@njit_serial
+def _thin_mask(G, sa, stride, keep):
+    """Mark the schedule points a thinned wall keeps: keep[k]; returns how many.
+
+    Kept: the ends, every ``stride``-th point, both points of a repeated or flat-G interval,
+    and every point that is not a plain sample of a smooth stretch (the rule of
+    :func:`_plain_breaks` applied to the raw samples, which it is invariant to: kinks and
+    sparse points stay, so only densely sampled smooth stretches are thinned).
+    """
+    nt = G.shape[0]
+    curv = np.zeros(nt)
+    for k in range(1, nt - 1):
+        dl = G[k] - G[k - 1]
+        dr = G[k + 1] - G[k]
+        if dl > 0.0 and dr > 0.0:
+            curv[k] = abs((sa[k + 1] - sa[k]) / dr - (sa[k] - sa[k - 1]) / dl) / (0.5 * (dl + dr))
+    n_keep = 0
+    for k in range(nt):
+        keep[k] = True
+        if 0 < k < nt - 1 and k % stride != 0:
+            dl = G[k] - G[k - 1]
+            dr = G[k + 1] - G[k]
+            if (dl > 0.0 and dr > 0.0 and G[k - 1] > 0.0 and math.log(G[k] / G[k - 1]) <= PLAIN_DLN
+                    and math.log(G[k + 1] / G[k]) <= PLAIN_DLN):
+                ref = 0.0
+                if k > 1 and curv[k - 1] > ref:
+                    ref = curv[k - 1]
+                if k + 2 < nt and curv[k + 1] > ref:
+                    ref = curv[k + 1]
+                if curv[k] <= KINK_RATIO * ref:
+                    keep[k] = False
+        if keep[k]:
+            n_keep += 1
+    return n_keep
+
+
+@njit_serial
+def _solve_subset(G, sa, keep, n_keep, sigma0, rtol, level, counts):
+    """_solve_core on the kept points; returns (status, indices, area, load, det, det_load, err)."""
+    idx = np.empty(n_keep, dtype=np.int64)
+    j = 0
+    for k in range(G.shape[0]):
+        if keep[k]:
+            idx[j] = k
+            j += 1
+    g_sub = np.empty(n_keep)
+    sa_sub = np.empty(n_keep)
+    for j in range(n_keep):
+        g_sub[j] = G[idx[j]]
+        sa_sub[j] = sa[idx[j]]
+    a = np.empty(n_keep)
+    ld = np.empty(n_keep)
+    d = np.empty(n_keep)
+    dl = np.empty(n_keep)
+    e = np.empty(n_keep)
+    status = _solve_core(g_sub, sa_sub, sigma0, rtol, level, a, ld, d, dl, e, counts)
+    return status, idx, a, ld, d, dl, e
+
+
+@njit_serial
+def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, out_det_load,
+                  out_error, counts):
+    """Contact area and load bookkeeping of one nominal pressure from the BNR integral equation.
+
+    Parameters
+    ----------
+    G : ndarray, shape (n_t,)
+        Non-decreasing diffusion times, G[0] >= 0. Repeated values are allowed only with equal
+        sa (a wall jump is BAD_INPUT). [stress^2]
+    sa : ndarray, shape (n_t,)
+        Detachment stress sigma_a at those times (wall at -sa), linear in G in between,
+        sa[0] before G[0]. [stress]
+    sigma0 : float
+        Nominal stress (compressive > 0), same unit as sqrt(G). [stress]
+    rtol : float
+        Target relative accuracy of the area (used when ``level = -1``). [-]
+    level : int
+        -1: resolution from rtol, refined adaptively; L >= 0: the fixed runs N_L, 2 N_L,
+        4 N_L with N_L = N_0 2^L (each level doubles the nodes; level 0 a coarse base). [-]
+    out_area, out_load, out_det_area, out_det_load, out_error : ndarray, shape (n_t,)
+        Written in place: A/A0, load int sigma P dsigma, detached area 1 - A, detached load
+        int sigma_a g dG, and an error estimate of the area (see the module notes).
+    counts : ndarray of int64, shape (>= 3,)
+        Written in place: [0] nodes of the finest run, [1] kernel (Psi) evaluations of all
+        runs together (free term included: one per node), [2] the same number (work units).
+
+    Returns
+    -------
+    status : int
+        :mod:`persson_fast._kernels.status` code: OK; BAD_INPUT (bad arrays or a wall jump);
+        NONFINITE; RTOL_NOT_MET (rtol mode: the node cap or the attempt limit stopped the
+        refinement; the outputs are the finest resolution reached, error_estimate its
+        estimate); WALL_THINNED (rtol mode: more schedule points than the node cap allows even
+        at the coarsest resolution; the outputs are those of a wall through a subset of the
+        points, see the module notes); GRID_CAP (an explicit ``level`` over the node cap:
+        nothing solved, outputs NaN).
+
+    Notes
+    -----
+    Buonocore, Nobile & Ricciardi, Adv. Appl. Prob. 19, 784 (1987). Scale-free: units only
+    need to be consistent. By construction A + detached = 1 and load = sigma0 + detached load
+    hold to rounding. No NaN area comes back in the rtol mode unless the status is NONFINITE
+    or BAD_INPUT.
+    """
+    status = _solve_core(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area,
+                         out_det_load, out_error, counts)
+    if status != NOTHING_FIT:
+        return status
+    # --- too many schedule points for the node cap: thin the smooth stretches ---------------
+    nt = G.shape[0]
+    keep = np.empty(nt, dtype=np.bool_)
+    keep2 = np.empty(nt, dtype=np.bool_)
+    stride = 2
+    while True:
+        n_keep = _thin_mask(G, sa, stride, keep)
+        s1, idx, a1, ld1, d1, dl1, e1 = _solve_subset(G, sa, keep, n_keep, sigma0, rtol, level,
+                                                      counts)
+        if s1 != NOTHING_FIT or stride >= nt:
+            break
+        stride *= 2
+    if s1 == NOTHING_FIT:
+        s1 = st.GRID_CAP                 # kinks alone exceed the cap (outputs NaN)
+    if s1 != st.OK and s1 != st.RTOL_NOT_MET:
+        nan = math.nan
+        fill_state(np.int64(0), nt, nan, nan, nan, nan, nan, out_area, out_load, out_det_area,
+                   out_det_load, out_error)
+        return s1
+    work = counts[1]
+    n_fine = counts[0]
+    # thinning error: the same solve on every second kept point of the smooth stretches
+    n_keep2 = _thin_mask(G, sa, 2 * stride, keep2)
+    s2, idx2, a2, ld2, d2, dl2, e2 = _solve_subset(G, sa, keep2, n_keep2, sigma0, rtol, level,
+                                                   counts)
+    work += counts[1]
+    counts[0] = n_fine
+    counts[1] = work
+    counts[2] = work
+    # per kept point: |A_m - A_2m| where both exist, else the larger neighbouring value
+    thin = np.empty(n_keep)
+    j2 = 0
+    for j in range(n_keep):
+        thin[j] = -1.0
+        while j2 < n_keep2 and idx2[j2] < idx[j]:
+            j2 += 1
+        if j2 < n_keep2 and idx2[j2] == idx[j]:
+            if s2 == st.OK or s2 == st.RTOL_NOT_MET:
+                thin[j] = abs(a1[j] - a2[j2]) + e2[j2]
+            else:
+                thin[j] = 1.0
+    for j in range(n_keep):
+        if thin[j] < 0.0:
+            lo = thin[j - 1] if j > 0 else 0.0
+            hi = 0.0
+            for q in range(j + 1, n_keep):
+                if thin[q] >= 0.0:
+                    hi = thin[q]
+                    break
+            thin[j] = lo if lo > hi else hi
+    # outputs: kept points directly, the others by quadratic interpolation in G of the
+    # detached area and load (cumulative integrals) through the three nearest kept points
+    j = 0
+    for k in range(nt):
+        while j < n_keep - 1 and idx[j + 1] <= k:
+            j += 1
+        if idx[j] == k:
+            out_det_area[k] = d1[j]
+            out_det_load[k] = dl1[j]
+            out_error[k] = e1[j] + thin[j]
+        else:
+            # idx[j] < k < idx[j + 1]
+            # (the bracketing kept points have G[idx[j]] < G[k] < G[idx[j + 1]])
+            x = G[k]
+            w = (x - G[idx[j]]) / (G[idx[j + 1]] - G[idx[j]])
+            dlin = (1.0 - w) * d1[j] + w * d1[j + 1]
+            dq = dlin
+            lq = (1.0 - w) * dl1[j] + w * dl1[j + 1]
+            j0 = j - 1 if j > 0 else 0
+            if j0 + 2 > n_keep - 1:
+                j0 = n_keep - 3
+            if j0 >= 0:
+                xa = G[idx[j0]]
+                xb = G[idx[j0 + 1]]
+                xc = G[idx[j0 + 2]]
+                if xa < xb < xc:
+                    la = (x - xb) * (x - xc) / ((xa - xb) * (xa - xc))
+                    lb = (x - xa) * (x - xc) / ((xb - xa) * (xb - xc))
+                    lc = (x - xa) * (x - xb) / ((xc - xa) * (xc - xb))
+                    dq = la * d1[j0] + lb * d1[j0 + 1] + lc * d1[j0 + 2]
+                    lq = la * dl1[j0] + lb * dl1[j0 + 1] + lc * dl1[j0 + 2]
+            out_det_area[k] = dq
+            out_det_load[k] = lq
+            # interpolation error: bounded by the gap to the linear interpolant between the
+            # bracketing points
+            eb = e1[j] if e1[j] > e1[j + 1] else e1[j + 1]
+            tb = thin[j] if thin[j] > thin[j + 1] else thin[j + 1]
+            out_error[k] = eb + tb + abs(dq - dlin)
+        dd = out_det_area[k]
+        if dd < 0.0:
+            dd = 0.0
+        elif dd > 1.0:
+            dd = 1.0
+        out_det_area[k] = dd
+        out_area[k] = 1.0 - dd
+        out_load[k] = sigma0 + out_det_load[k]
+    return st.WALL_THINNED
 
 def _bnr_sweep(G, sa_rows, pressures, rtol, level, area, load, det_area, det_load, error,
                status, counts):
