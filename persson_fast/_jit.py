@@ -1,6 +1,8 @@
 """The only place that sets numba options.
 
-* serial kernels: ``cache=True`` (compiled once per machine, reused by later processes); the
+* serial kernels: cached on disk (compiled once per machine, reused by later processes), each
+  entry stamped with a hash of every kernel source file (:func:`kernel_source_stamp`: numba
+  itself checks only the cached function's own file, not the files of what it calls); the
   default parallel driver (:func:`persson_fast.sweep.run_rows`) runs them on a pool of Python
   threads (they release the GIL), so it needs nothing else compiled;
 * ``prange`` sweeps (``parallel="prange"`` only): ``parallel=True`` **without** ``cache`` --
@@ -16,16 +18,91 @@ which is how line coverage is measured honestly.
 """
 from __future__ import annotations
 
-import numba
+import functools
+import hashlib
+import os
+from pathlib import Path
 
-__all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange"]
+import numba
+from numba.core import caching
+
+__all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange",
+           "kernel_source_stamp"]
 
 prange = numba.prange
+
+_PACKAGE = Path(__file__).resolve().parent
+#: every file that holds compiled code: a cached kernel is stale when any of them changes
+_KERNEL_FILES = ("_jit.py", "embed.py", "_kernels")
+
+
+def _kernel_paths():
+    out = []
+    for name in _KERNEL_FILES:
+        path = _PACKAGE / name
+        out.extend(sorted(path.glob("*.py")) if path.is_dir() else [path])
+    return out
+
+
+@functools.lru_cache(maxsize=8)
+def _hash_files(key):
+    h = hashlib.sha256()
+    for path, _, _ in key:
+        h.update(path.encode())
+        h.update(Path(path).read_bytes())
+    return h.hexdigest()
+
+
+def kernel_source_stamp() -> str:
+    """A hash of the source of every file with compiled code in the package.
+
+    numba's disk cache checks only the source file of the cached function itself, so a
+    cached sweep kernel would keep running an old version of the solver it calls from another
+    file (after an upgrade or an edit). The package's cache entries carry this stamp instead,
+    so a change to any kernel file invalidates them all.
+    """
+    key = []
+    for path in _kernel_paths():
+        st = os.stat(path)
+        key.append((str(path), st.st_mtime_ns, st.st_size))
+    return _hash_files(tuple(key))
+
+
+class _PackageStamp:
+    def get_source_stamp(self):
+        return (super().get_source_stamp(), kernel_source_stamp())
+
+
+class _UserDirLocator(_PackageStamp, caching.UserProvidedCacheLocator):
+    pass
+
+
+class _InTreeLocator(_PackageStamp, caching.InTreeCacheLocator):
+    pass
+
+
+class _UserWideLocator(_PackageStamp, caching.UserWideCacheLocator):
+    pass
+
+
+class _CacheImpl(caching.CompileResultCacheImpl):
+    _locator_classes = [_UserDirLocator, _InTreeLocator, _UserWideLocator]
+
+
+class _FunctionCache(caching.FunctionCache):
+    _impl_class = _CacheImpl
+
+
+def _cached(dispatcher):
+    """Give a dispatcher the package's disk cache (stamped by :func:`kernel_source_stamp`)."""
+    if hasattr(dispatcher, "enable_caching"):       # not under NUMBA_DISABLE_JIT=1
+        dispatcher._cache = _FunctionCache(dispatcher.py_func)
+    return dispatcher
 
 
 def njit_serial(func):
     """Compile ``func`` in nopython mode, cached on disk, no fastmath."""
-    return numba.njit(cache=True, fastmath=False, nogil=True, error_model="numpy")(func)
+    return _cached(numba.njit(fastmath=False, nogil=True, error_model="numpy")(func))
 
 
 def njit_inline(func):
@@ -35,8 +112,8 @@ def njit_inline(func):
     optimisation of everything below it at compile time (each numba function is finalised
     with its callees linked in), and nothing at run time once inlined.
     """
-    return numba.njit(cache=True, fastmath=False, nogil=True, error_model="numpy",
-                      inline="always")(func)
+    return _cached(numba.njit(fastmath=False, nogil=True, error_model="numpy",
+                              inline="always")(func))
 
 
 def njit_parallel(func):
