@@ -130,8 +130,6 @@ def test_kink_gets_a_sample(G, kinks):
     assert np.max(np.abs(np.interp(x, w.G, w.sigma_a) - kinked_wall(x))) < 1e-6 * 1e-8
 
 
-@pytest.mark.xfail(strict=False, reason="the cn kernel's accuracy after a kink (slope jump) is "
-                   "being improved separately: today ~30-300 rtol at G = 2, status ok")
 @pytest.mark.parametrize("kinks", [None, [4.0 / 3.0]])
 @pytest.mark.parametrize("rtol", [1e-6, 1e-8])
 def test_kinked_callable_within_rtol_or_flagged(kink_reference, kinks, rtol):

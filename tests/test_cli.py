@@ -303,6 +303,19 @@ class _InterruptedWriter:
         return self._writer.writerow(row)
 
 
+@pytest.fixture(autouse=True)
+def default_sigint():
+    """Ctrl-C raises KeyboardInterrupt during each test, as in an interactive shell.
+
+    A process started in the background by a non-interactive shell (as CI may be) inherits
+    SIGINT ignored; the tests of the Ctrl-C handling need Python's default handler.
+    """
+    before = signal.getsignal(signal.SIGINT)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
 @pytest.fixture
 def interrupted_csv(monkeypatch):
     monkeypatch.setattr(cli, "csv", types.SimpleNamespace(writer=_InterruptedWriter))
