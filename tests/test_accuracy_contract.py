@@ -117,3 +117,14 @@ def test_issue_walls_are_never_silently_wrong(rtol):
         assert err <= rtol * ref[-1] + ATOL or r.status[0] != 0, (case, err / ref[-1])
         # the estimate reports the error reached
         assert r.error_estimate[0, -1] >= 0.5 * err, (case, r.error_estimate[0, -1], err)
+
+
+@pytest.mark.parametrize("rtol", (1e-6, 1e-7, 1e-8))
+@pytest.mark.parametrize("case", ("kinked-wall", "fast-wall"))
+def test_issue_walls_are_within_rtol_with_status_0(case, rtol):
+    """Issue 12: the kinked and the fast straight wall are solved, not only flagged."""
+    G, sigma0, sa, ref, _ = _case(case)
+    r = pf.solve_diffusion(G, sigma0, sa, method="cn", rtol=rtol)
+    assert r.status[0] == 0, r.message
+    assert np.all(np.abs(r.area[0] - ref) <= rtol * ref + ATOL), (
+        np.max(np.abs(r.area[0] - ref) / (rtol * ref + ATOL)))

@@ -57,7 +57,11 @@ H_BASE = 0.06         # coarse node spacing in xi at rtol = 1e-6
 NPER_BASE = 5.0       # coarse steps per unit of ln G at rtol = 1e-6 (11.5 per decade)
 NPER_WIDTH = 40.0     # coarse steps per profile width sqrt(2G) travelled by the wall
 RECEDING_FACTOR = 0.25 # a receding wall (sigma_a growing) needs fewer steps per width travelled
-PECLET_MAX = 0.25      # largest cell Peclet number of the wall drift (exponentially fitted)
+PECLET_MAX = 0.1       # largest cell Peclet number of the wall drift (exponentially fitted)
+                       # at rtol = 1e-6, shrinking with the node spacing below (the wall
+                       # layer, 1/(w|v|) wide, is resolved like the profile; at 0.25 and
+                       # fixed, fast walls (b y0 = -30) kept an O(h^2) layer error of 20 rtol)
+PECLET_CAP = 0.25      # ... and never above this (coarse tolerances)
 WORK_MAX = 4e6       # coarse node-steps above which resolution is cut (and flagged), rtol >= 1e-6
 WORK_GROWTH_MAX = 30.0  # below rtol = 1e-6 the cap grows as (1e-6/rtol)^(1/2), as the work of a
                         # plain "cn" scene does, up to this factor (rtol = 1.1e-9)
@@ -69,6 +73,8 @@ RTOL_ATOL = 1e-12     # absolute part of the accuracy contract |dA| <= rtol A + 
 EXTRAPOLATED_ORDER = 3.0  # order assumed for the extrapolated error estimate (measured 3.6-4)
 LEAK_TOL = 1e-10      # far-field leakage above this is flagged
 K_LAYER = 1.0         # after a cut, the wall layer is smoothed over a diffusion time K_LAYER h^2
+PIECE_HALVE = 1       # piece_flags: the piece takes half the steps (paired in the coarsest run)
+PIECE_KINK = 2        # piece_flags: the wall's slope jumps at the piece's end: damped restart
 GAUSS3_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
 GAUSS3_W = (5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0)
 
@@ -325,9 +331,9 @@ def _fluxes(p, h, drift, diff):
 
 @njit_serial
 def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nodes, h,
-          n_steps_per_lng, n_steps_per_width, refine, n_damp, theta_main, coarsen_at, p, tmp,
-          lo, di, up, a_lo, a_di, a_up, rhs, scratch, out_area, out_load, out_det_area,
-          out_det_load, counts):
+          n_steps_per_lng, n_steps_per_width, refine, n_damp, theta_main, coarsen_at,
+          piece_flags, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs, scratch, out_area, out_load,
+          out_det_area, out_det_load, counts):
     """March one resolution from the exact start at ``g_start`` through the schedule.
 
     Scaled units (y0 = 1). Each schedule piece gets ``refine`` times the steps that
@@ -336,7 +342,10 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     diffusion time in ``coarsen_at`` the grid drops every other node (the profile has widened);
     a moment projection keeps the discrete area and first moment. Fills outputs for schedule
     indices >= ``i_first``. ``theta_main``: 0.5 (Crank-Nicolson) or 1 (implicit Euler) for
-    the undamped steps. Adds the steps and node-steps taken to ``counts[1]``, ``counts[2]``.
+    the undamped steps. ``piece_flags[i]`` (per schedule index, for the piece ending there):
+    PIECE_HALVE takes ``refine // 2`` steps on it (a piece one step of the coarsest run shares
+    with its neighbour, see :func:`_pair_pieces`), PIECE_KINK starts ``n_damp`` damped steps
+    after the point (a kink of the wall, see :func:`_mark_kinks`). Adds the steps and node-steps taken to ``counts[1]``, ``counts[2]``.
     Returns (status, leak), leak the mass lost through the far end.
     """
     n = n_nodes - 1
@@ -443,7 +452,10 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                     m = m_wall
                 if m < 1:
                     m = 1
-                m *= refine
+                if piece_flags[i] & PIECE_HALVE and refine >= 2:
+                    m *= refine // 2
+                else:
+                    m *= refine
                 ratio = (g_stop / g_cur) ** (1.0 / m)
                 g_a = g_cur
                 for step in range(m):
@@ -495,6 +507,8 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                 sa_cur = sa_stop
             g_cur = g_end
             sa_cur = sa_k[i]
+            if piece_flags[i] & PIECE_KINK:
+                damp_left = n_damp
         a, m1 = _moments(p, h)
         if not (math.isfinite(a) and math.isfinite(m1)):
             return st.NONFINITE, leak
@@ -507,6 +521,68 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     if jumped:
         return st.WALL_JUMP, leak
     return st.OK, leak
+
+
+@njit_serial
+def _piece_steps(g_a, g_b, sa_a, sa_b, n_steps_per_lng, n_steps_per_width):
+    """Steps :func:`march` takes on a piece [g_a, g_b] of the wall (before ``refine``)."""
+    m = int(math.ceil(math.log(g_b / g_a) * n_steps_per_lng - 1e-9))
+    per_width = n_steps_per_width if sa_b < sa_a else n_steps_per_width * RECEDING_FACTOR
+    m_wall = int(math.ceil(abs(sa_b - sa_a) / math.sqrt(2.0 * g_a) * per_width - 1e-9))
+    if m_wall > m:
+        m = m_wall
+    if m < 1:
+        m = 1
+    return m
+
+
+@njit_serial
+def _pair_pieces(G_k, sa_k, i_first, g_start, nper, nper_width, coarsen_at, piece_flags, keep):
+    """Pair schedule pieces that the coarsest run of the ladder can cross in one step.
+
+    The ladder's runs take 1/2, 1, 2 times the coarse steps of each piece. Where the schedule
+    is denser than the resolution (a piece needs at most one coarse step at densities
+    ``nper``, ``nper_width``), the coarse run takes one step per piece and the coarsest run
+    one step across a pair: two neighbouring such pieces are paired when the wall is straight
+    across both (no kink at the shared point), no grid coarsening falls inside the pair, the
+    first is not the drain piece after a jump, and the pair needs one step of the coarsest
+    run. The shared point is dropped from the coarsest run's schedule (``keep`` False) and
+    both pieces are flagged PIECE_HALVE. Returns the number of points kept.
+    """
+    n = G_k.shape[0]
+    n_keep = n
+    # the first piece is not paired: the error jumps from zero at the exact start, and the
+    # coarsest run's value at its end is not interpolable
+    i = i_first + 1
+    while i + 1 < n:
+        g_a = G_k[i - 1]
+        sa_a = sa_k[i - 1]
+        g_m = G_k[i]
+        g_b = G_k[i + 1]
+        ok = g_a < g_m < g_b
+        if ok and G_k[i - 1] <= G_k[i - 2]:
+            ok = False
+        if ok:
+            for c in coarsen_at:
+                if g_a < c < g_b:
+                    ok = False
+        if ok:
+            pred = sa_a + (sa_k[i + 1] - sa_a) * (g_m - g_a) / (g_b - g_a)
+            ok = abs(sa_k[i] - pred) <= 1e-13 * (1.0 + abs(pred))
+        if ok:
+            ok = (_piece_steps(g_a, g_m, sa_a, sa_k[i], nper, nper_width) == 1
+                  and _piece_steps(g_m, g_b, sa_k[i], sa_k[i + 1], nper, nper_width) == 1
+                  and _piece_steps(g_a, g_b, sa_a, sa_k[i + 1], 0.5 * nper,
+                                   0.5 * nper_width) == 1)
+        if ok:
+            piece_flags[i] |= PIECE_HALVE
+            piece_flags[i + 1] |= PIECE_HALVE
+            keep[i] = False
+            n_keep -= 1
+            i += 2
+        else:
+            i += 1
+    return n_keep
 
 
 #: grid variants of this kernel: (theta of the undamped steps, Richardson extrapolation,
@@ -574,7 +650,7 @@ def solve_variant(variant, G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
 
 
 @njit_serial
-def _ladder_estimate(area_b, area_c, area_f, i_first, extrapolate, order, rtol, est):
+def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order, rtol, est):
     """Error estimate of the returned area from three runs in exact 2:1 ratio; True when it
     meets ``rtol`` (|error| <= rtol A + RTOL_ATOL at every output, or ``rtol`` <= 0).
 
@@ -588,11 +664,17 @@ def _ladder_estimate(area_b, area_c, area_f, i_first, extrapolate, order, rtol, 
     Where the ratio is off by more than ASYMPTOTIC_SLACK (or the signs differ) the ladder
     is not asymptotic and the larger, un-extrapolated measure is taken as well: |d2|/3 for
     R (the error of F), |d2| for F. A non-finite B (the coarsest run) leaves the
-    un-extrapolated measure.
+    un-extrapolated measure. Where B skipped the point (``keep_b`` False: it crossed a pair
+    of pieces in one step, see :func:`_pair_pieces`; never the first or last point) the
+    estimate is the larger of its neighbours' (the error of R is smooth in G; B's value there
+    would have to be interpolated, which fails where the error changes fast after the start).
     """
     met = True
     q = 4.0 if extrapolate else 2.0 ** order
-    for k in range(i_first, area_f.shape[0]):
+    n = area_f.shape[0]
+    for k in range(i_first, n):
+        if not keep_b[k]:
+            continue
         d1 = area_c[k] - area_b[k]
         d2 = area_f[k] - area_c[k]
         if extrapolate:
@@ -611,6 +693,14 @@ def _ladder_estimate(area_b, area_c, area_f, i_first, extrapolate, order, rtol, 
         if not math.isfinite(e):
             met = False
         est[k] = e
+        if e > rtol * min(max(a, 0.0), 1.0) + RTOL_ATOL:
+            met = False
+    for k in range(i_first + 1, n - 1):
+        if keep_b[k]:
+            continue
+        e = max(est[k - 1], est[k + 1])
+        est[k] = e
+        a = area_f[k] + (area_f[k] - area_c[k]) / 3.0 if extrapolate else area_f[k]
         if e > rtol * min(max(a, 0.0), 1.0) + RTOL_ATOL:
             met = False
     return met or rtol <= 0.0
@@ -776,8 +866,11 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
                 pe = v
     xi_max = xi_far + K_DOMAIN
     h_top = 0.25
-    if pe * h_top > PECLET_MAX:
-        h_top = PECLET_MAX / pe
+    # (the extrapolated "cn" only: the others' error is dominated elsewhere, and a finer
+    # grid would cost them steps under the work cap)
+    pe_max = min(PECLET_CAP, PECLET_MAX / scale_x) if extrapolate else PECLET_CAP
+    if pe * h_top > pe_max:
+        h_top = pe_max / pe
     if h_c > h_top:
         h_c = h_top
     # work cap, judged by the resolution the tolerance needs: the coarse steps the step
@@ -861,6 +954,31 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
     r_det_load = np.empty((3, nt + 1))
     run_status = np.zeros(3, dtype=np.int64)
     est = np.zeros(nt + 1)
+    # where the schedule forces steps, the coarsest run crosses pairs of pieces in one step
+    # (its own thinned schedule), so that the coarse and fine runs keep one and two steps
+    # per piece instead of the two and four an exact 2:1:1/2 ladder would force
+    piece_flags = np.zeros(nt + 1, dtype=np.int64)
+    keep = np.ones(nt + 1, dtype=np.bool_)
+    keep_all = np.ones(nt + 1, dtype=np.bool_)
+    n_keep = _pair_pieces(G_k, sa_k, i_first, g_start, nper, nper_width, coarsen_at,
+                          piece_flags, keep)
+    G_t = np.empty(n_keep)
+    sa_t = np.empty(n_keep)
+    flags_t = np.zeros(n_keep, dtype=np.int64)
+    i_first_t = i_first
+    kk = 0
+    for k in range(nt + 1):
+        if keep[k]:
+            G_t[kk] = G_k[k]
+            sa_t[kk] = sa_k[k]
+            flags_t[kk] = piece_flags[k] & PIECE_KINK
+            kk += 1
+        elif k < i_first:
+            i_first_t -= 1
+    t_area = np.empty(n_keep)
+    t_load = np.empty(n_keep)
+    t_det = np.empty(n_keep)
+    t_det_load = np.empty(n_keep)
     j = 0
     met = True
     while True:
@@ -871,17 +989,32 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             tmp = np.empty(size)
             lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(size)
         slot = j % 3
-        s_j, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s, n_j + 1,
-                       2.0 * h_c / (1 << j), nper_h, nper_width_h, np.int64(1 << j), n_damp,
-                       theta, coarsen_at, p[: n_j + 1], tmp[: n_j + 1], lo, di, up, a_lo, a_di,
-                       a_up, rhs, scratch, r_area[slot], r_load[slot], r_det[slot],
-                       r_det_load[slot], counts)
+        if j == 0 and n_keep < nt + 1:
+            s_j, _ = march(G_t, sa_t, i_first_t, g_start, start_linear, b_lin, sa0s, sig0s,
+                           n_j + 1, 2.0 * h_c, nper_h, nper_width_h, np.int64(1), n_damp, theta,
+                           coarsen_at, flags_t, p[: n_j + 1], tmp[: n_j + 1], lo, di, up, a_lo,
+                           a_di, a_up, rhs, scratch, t_area, t_load, t_det, t_det_load, counts)
+            kk = 0
+            for k in range(nt + 1):
+                if keep[k]:
+                    r_area[slot, k] = t_area[kk]
+                    kk += 1
+                else:
+                    r_area[slot, k] = np.nan
+        else:
+            s_j, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s,
+                           n_j + 1, 2.0 * h_c / (1 << j), nper_h, nper_width_h, np.int64(1 << j),
+                           n_damp, theta, coarsen_at, piece_flags, p[: n_j + 1], tmp[: n_j + 1],
+                           lo, di, up, a_lo, a_di, a_up, rhs, scratch, r_area[slot],
+                           r_load[slot], r_det[slot], r_det_load[slot], counts)
         run_status[slot] = s_j
         if j >= 2:
             sb = (j - 2) % 3
             sc = (j - 1) % 3
-            met = _ladder_estimate(r_area[sb], r_area[sc], r_area[slot], i_first, extrapolate,
-                                   order, rtol, est)
+            # the coarsest run of the first ladder may have skipped points
+            met = _ladder_estimate(r_area[sb], r_area[sc], r_area[slot],
+                                   keep if j == 2 else keep_all, i_first, extrapolate, order,
+                                   rtol, est)
             if met or rtol <= 0.0:
                 break
             # refine: the next pair's coarse run does 4^(j-1) times the coarse work of the

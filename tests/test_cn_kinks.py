@@ -1,0 +1,108 @@
+"""Kinked and fast walls of issue 12 with "cn": within rtol with status 0 at rtol 1e-6 ... 1e-8;
+random kinks: within rtol or flagged, never NaN. And the ladder's thinned coarsest run: a
+densely sampled wall costs the coarse and fine runs one and two steps per piece.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as hst
+
+import persson_fast as pf
+from persson_fast._kernels import diffusion as dk
+
+ATOL = 1e-12
+RTOLS = (1e-6, 1e-7, 1e-8)
+
+_G_KINK = np.array([0.0, 0.5, 1.0, 4.0 / 3.0, 2.0])
+#: bnr at rtol 1e-11 (as in test_accuracy_contract)
+_KINK_REF = np.array([1.0, 0.3372562102870542, 0.22417479035311683, 0.1865877402638022,
+                      0.14778051784786672])
+_A, _SIGMA0, _G_END = 2e5, 8e5, 1e11
+
+
+def _within(area, ref, rtol):
+    return np.abs(area - ref) <= rtol * ref + ATOL
+
+
+@pytest.mark.parametrize("rtol", RTOLS)
+def test_kinked_wall_within_rtol(rtol):
+    sa = np.maximum(0.0, 0.4 - 0.3 * _G_KINK)
+    r = pf.solve_diffusion(_G_KINK, 0.1, sa, method="cn", rtol=rtol)
+    assert r.status[0] == 0, r.message
+    assert np.all(_within(r.area[0], _KINK_REF, rtol)), np.abs(r.area[0] - _KINK_REF) / (
+        rtol * _KINK_REF)
+
+
+@pytest.mark.parametrize("rtol", RTOLS)
+@pytest.mark.parametrize("b_y0", (-30.0, -10.0, -1.0, 1.0, 5.0, 20.0))
+@pytest.mark.parametrize("first", (1e4, 1e-7 * _G_END))
+def test_fast_straight_wall_within_rtol(first, b_y0, rtol):
+    """sigma_a = a + b G sampled at (0, first, G_end), b y0 from -30 to +20: the sampled
+    first piece is tiny (the exact start covers it only), the wall layer is thin."""
+    b = b_y0 / (_SIGMA0 + _A)
+    G = np.array([0.0, first, _G_END])
+    ref = pf.linear_boundary_area(_SIGMA0, G, _A, b)
+    r = pf.solve_diffusion(G, _SIGMA0, _A + b * G, method="cn", rtol=rtol)
+    assert r.status[0] == 0, r.message
+    assert np.all(_within(r.area[0], ref, rtol)), np.abs(r.area[0] - ref) / (rtol * ref)
+
+
+@pytest.mark.xfail(strict=False, reason=(
+    "open (issue 12, item 2a): after a kink cn's order drops and its ladder estimate can sit "
+    "below the error; found: g_kink=0.25, slopes 0 -> -0.5, sigma0=2, rtol=1e-6: status 0, "
+    "error 1.01 rtol, estimate 0.5 rtol (the same before this change). Needs a damped "
+    "restart at detected kinks (march's PIECE_KINK flag is in place, detection is not)"))
+@settings(max_examples=25, deadline=None)
+@given(g_kink=hst.floats(0.05, 3.0), slope1=hst.floats(-0.6, 0.6),
+       slope2=hst.floats(-0.6, 0.6), sigma0=hst.floats(0.05, 2.0),
+       rtol=hst.sampled_from((1e-4, 1e-6)))
+def test_random_kinks_within_rtol_or_flagged(g_kink, slope1, slope2, sigma0, rtol):
+    """A wall with one kink (slopes, position, pressure random): never NaN; with status 0
+    it is within rtol of bnr at a tolerance 100 times tighter."""
+    G = np.unique(np.concatenate([[0.0], np.geomspace(1e-2, 4.0, 12), [g_kink]]))
+    sa = np.maximum(0.0, 0.3 + np.where(G <= g_kink, slope1 * G,
+                                        slope1 * g_kink + slope2 * (G - g_kink)))
+    r = pf.solve_diffusion(G, sigma0, sa, method="cn", rtol=rtol)
+    assert np.all(np.isfinite(r.area[0])) and np.all(np.isfinite(r.error_estimate[0]))
+    if r.status[0] != 0:
+        return
+    ref = pf.solve_diffusion(G, sigma0, sa, method="bnr", rtol=rtol * 1e-2)
+    if ref.status[0] != 0:
+        return
+    err = np.abs(r.area[0] - ref.area[0])
+    assert np.all(err <= rtol * ref.area[0] + ATOL + ref.error_estimate[0]), (
+        np.max(err / (rtol * ref.area[0] + ATOL)))
+
+
+def test_dense_schedule_pairs_pieces_for_the_coarsest_run():
+    """Pieces that need less than one coarse step are paired for the coarsest run only (the
+    wall straight across them, none across a grid coarsening, never the first piece)."""
+    G = np.concatenate([[0.0], np.geomspace(1e-2, 10.0, 200)])
+    sa = np.zeros_like(G)
+    flags = np.zeros(G.shape[0], dtype=np.int64)
+    keep = np.ones(G.shape[0], dtype=np.bool_)
+    n_keep = dk._pair_pieces(G, sa, np.int64(2), 1e-2, 5.0, 40.0, np.empty(0), flags, keep)
+    assert n_keep < G.shape[0] - 80          # most pieces are paired
+    assert keep[:3].all() and keep[-1]       # the start, the first piece and the end are kept
+    skipped = np.flatnonzero(~keep)
+    assert np.all(np.diff(skipped) >= 2)     # pairs share no point
+    assert np.all(flags[skipped] & dk.PIECE_HALVE) and np.all(flags[skipped + 1] & dk.PIECE_HALVE)
+    # a kink at a would-be shared point stops that pair
+    sa_kink = np.where(G > G[3], G - G[3], 0.0)
+    flags[:] = 0
+    keep[:] = True
+    dk._pair_pieces(G, sa_kink, np.int64(2), 1e-2, 5.0, 40.0, np.empty(0), flags, keep)
+    assert keep[3]
+
+
+def test_dense_schedule_costs_about_one_coarse_step_per_piece():
+    """16 samples per decade of G (about 0.7 coarse steps each at rtol 1e-6): the three runs
+    take 1/2, 1 and 2 steps per piece, not 1, 2 and 4; the answer stays within rtol."""
+    G = np.concatenate([[0.0], np.geomspace(1e-4, 1e3, 113)])
+    r = pf.solve_diffusion(G, 1.0, 0.0, method="cn", rtol=1e-6)
+    ref = pf.images_area(1.0, G)
+    assert r.status[0] == 0
+    assert np.all(_within(r.area[0], ref, 1e-6))
+    # 112 pieces after the start: an unpaired ladder takes >= 7 steps per piece (1 + 2 + 4)
+    assert r.counts[0, 1] < 5.0 * 112, r.counts[0]
