@@ -241,7 +241,9 @@ def test_agrees_with_front_fixed_kernel(shape, sigma0):
     G, sa, sigma0 = G * scale**2, sa * scale, sigma0 * scale
     nt = G.shape[0]
     ref = [np.empty(nt) for _ in range(5)]
-    s_ref = solve_one(G, sa, sigma0, 1e-8, 2, *ref)
+    # reference far below the 1e-4 compared: cn at 1e-7 meets its tolerance here (at 1e-8 it
+    # reaches its work cap on the oscillating wall and says so, status 15)
+    s_ref = solve_one(G, sa, sigma0, 1e-7, 2, *ref)
     assert s_ref == st.OK
     status, out, _ = solve(G, sa, sigma0, rtol=1e-4)
     assert status == st.OK

@@ -6,6 +6,9 @@ RTOL = 1e-6
 ATOL = 1e-12
 #: A + detached = 1 and the load identity are exact in the scheme: rounding only
 IDENTITY = 1e-12
+#: ... accumulated over a solve: at most a few units of rounding (eps = 2.2e-16) per step taken
+#: by all the runs of the ladder (counts[:, 1]); the larger of the two bounds applies
+IDENTITY_PER_STEP = 8 * 2.2e-16
 #: load conservation without adhesion, relative to sigma0 (contract: 1e-8; the scheme gives rounding)
 LOAD_CONSERVATION = 1e-8
 #: compiled building blocks vs their NumPy twins: rounding of O(n) operations
