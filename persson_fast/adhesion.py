@@ -16,6 +16,7 @@ solve (one scene, a few dozen branch points: the loop is not the cost).
 """
 from __future__ import annotations
 
+import contextlib
 import time
 
 import numpy as np
@@ -25,7 +26,7 @@ from ._kernels.status import NOT_CONVERGED, WALL_JUMP
 from ._validation import as_float_array, check_finite
 from .methods import METHODS, check_serves, choose_auto
 from .results import ContactResult, per_contact_area, summarize_status
-from .sweep import choose_parallel, is_compiled, run_rows
+from .sweep import choose_parallel, is_compiled, prange_guard, run_rows
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
 
@@ -214,9 +215,10 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
     timings = {}
     if not is_compiled(kernel):
         t0 = time.perf_counter()
-        kernel(variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
-               controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs], status[:1],
-               iterations[:1], residual[:1])
+        with prange_guard() if mode == "prange" else contextlib.nullcontext():
+            kernel(variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
+                   controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs],
+                   status[:1], iterations[:1], residual[:1])
         timings["compile"] = time.perf_counter() - t0
     args = [variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled), rtol,
             controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],

@@ -5,6 +5,7 @@ a scene scale, so the kernels never see a Pascal.
 """
 from __future__ import annotations
 
+import contextlib
 import threading
 import time
 
@@ -132,6 +133,15 @@ def _workqueue_layer() -> bool:
     return True
 
 
+def prange_guard():
+    """A context for every call of a ``prange`` kernel (compilation included): a lock under
+    numba's workqueue threading layer, which aborts the process when two Python threads enter
+    it at once; nothing under the thread-safe layers (OpenMP, TBB)."""
+    import contextlib
+
+    return _prange_lock if _workqueue_layer() else contextlib.nullcontext()
+
+
 def run_rows(kernel_serial, kernel_prange, args, rows_in, rows_out, n: int, parallel) -> str:
     """Call a sweep kernel over ``n`` rows, serially, on a thread pool or over ``prange``.
 
@@ -166,10 +176,7 @@ def run_rows(kernel_serial, kernel_prange, args, rows_in, rows_out, n: int, para
     for i in rows_in + rows_out:
         perm[i] = np.ascontiguousarray(args[i][order])
     if mode == "prange":
-        if _workqueue_layer():
-            with _prange_lock:
-                kernel_prange(*perm)
-        else:
+        with prange_guard():
             kernel_prange(*perm)
     else:
         sliced = set(rows_in + rows_out)
@@ -250,7 +257,8 @@ def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, p
     kernel = par_kernel if mode == "prange" else serial
     if not is_compiled(kernel):
         t0 = time.perf_counter()
-        _warm(kernel, lead, damped)
+        with prange_guard() if mode == "prange" else contextlib.nullcontext():
+            _warm(kernel, lead, damped)
         timings["compile"] = time.perf_counter() - t0
     mid = (float(rtol), int(level)) + ((int(n_damp),) if damped else ())
     args = [*lead, G / scale**2, sa_rows / scale, pressures / scale, *mid,
