@@ -411,6 +411,17 @@ PULL_OFF_NEAR_STRESS = 1e-6
 PULL_OFF_NEAR_FLOOR = 1e-14
 #: the finer grids are solved at y0 = y_best * PULL_OFF_STEP**PULL_OFF_GRID_STAGES
 PULL_OFF_GRID_STAGES = 2
+#: stickiness (see :func:`_rest_state`): iterating Eqs. 8-9 at p_nom = 0, the state is not
+#: sticky once gamma_eff(1)/dgamma lies below minus its error bar on this many successive
+#: iterates while A(zeta1) falls (the iteration is on its way to the separated state A = 0)
+PULL_OFF_COLLAPSE = 3
+#: iterations of that test before it gives up undecided (the descent then decides)
+PULL_OFF_REST_ITER = 30
+#: a scene counts as not sticky only when it is not sticky on this many nested zeta grids
+#: (the coarsest and its refinements, the fewest pull_off extrapolates over): the threshold
+#: work of adhesion falls with the grid spacing at second order (seed scene: 0.052176,
+#: 0.051903, 0.051833, 0.051816, 0.051811 J/m^2 at 5, 10, 20, 40, 80 points per decade)
+PULL_OFF_STICKY_GRIDS = 3
 
 
 class _Branch:
@@ -425,6 +436,7 @@ class _Branch:
         from ._kernels.sweep import sweep_serial
 
         self.zeta = np.asarray(zeta, dtype=float)
+        self.work_of_adhesion = float(work_of_adhesion)
         G, c, wa, wb, scale, _ = _scene_arrays(surface, self.zeta, e_star, work_of_adhesion, beta)
         self.G, self.c, self.wa, self.wb, self.scale = G, c, wa, wb, scale
         self.gamma_s = gamma_s
@@ -460,6 +472,112 @@ class _Branch:
         self.area = area[0].copy()
         self.area_error = err[0].copy()
         return self.update(self.area), int(self._status[0])
+
+    def adhesion_at_one(self, area=None, area_error=None):
+        """gamma_eff(1)/dgamma of an area profile (default: the last one evaluated) and its
+        error bar from the diffusion solves' area error estimates. [-]
+
+        g1 = (A(zeta1) - U_el(1)/dgamma) / A(1); an error dA_k of the profile moves it by at
+        most (|dA(zeta1)| + sum_k (wa_k |dA_k| + wb_k |dA_k+1|) max|dF/dA|) / A(1), with
+        F = A S(A) (max|dF/dA| = 1 for S = 1, at most 3 with the energy correction).
+        """
+        from ._kernels.adhesion import elastic_energy_ratio
+
+        a = self.area if area is None else np.asarray(area, dtype=float)
+        err = np.abs(self.area_error if area_error is None else np.asarray(area_error, float))
+        if a[0] <= 0.0:
+            return 0.0, 0.0
+        u = np.empty(a.size)
+        elastic_energy_ratio(a, self.wa, self.wb, self.gamma_s, u)
+        slope = 1.0 if self.gamma_s < 0.0 else 3.0
+        g1 = (a[-1] - u[0]) / a[0]
+        bar = (err[-1] + slope * float(np.sum(self.wa * err[:-1] + self.wb * err[1:]))) / a[0]
+        return float(g1), float(bar)
+
+    def rest_state(self, x_start, rtol, *, m_hist, omega, max_iter):
+        """Is there a contact state at p_nom = 0 near ``x_start`` (scaled sigma_a)?
+
+        Iterates Eqs. 8-9 at sigma0 = 0 (Anderson, the step limited to half the wall's
+        value at each node so that no node is clipped to 0, plain relaxation once the
+        iterate collapses) with the diffusion solves at ``_inner_rtol(rtol)``. Verdict:
+
+        - False (not sticky): g1 = gamma_eff(1)/dgamma is below minus its error bar
+          (:meth:`adhesion_at_one`) on ``PULL_OFF_COLLAPSE`` successive iterates while
+          A(zeta1) falls, or A(zeta1) = 0 (the start is the separated state): sigma_a(1) = 0,
+          the wall sits where the distribution starts and the iteration heads for A = 0;
+        - True (sticky): the fixed-point residual (as in :meth:`point`) is below
+          ``PULL_OFF_RESIDUAL * rtol`` and g1 is above its error bar;
+        - None: neither within ``max_iter`` iterations.
+
+        Where the sign of g1 is within its error bar, the next diffusion solve is 10x
+        tighter (down to ``PULL_OFF_INNER_MIN``).
+
+        Returns a dict (sticky, x, area, g1, g1_error, iterations, residual).
+        """
+        from ._kernels.status import BAD_INPUT, NONFINITE
+
+        w = 1.0 / self.c
+        tol = max(PULL_OFF_RESIDUAL * rtol, 1e-13)
+        inner = _inner_rtol(rtol)
+        x = np.maximum(np.array(x_start, dtype=float), 0.0)
+        dX, dF = [], []
+        x_prev = f_prev = None
+        collapse, a_prev = 0, np.inf
+        verdict, res, g1, bar, it = None, np.inf, 0.0, 0.0, 0
+        while it < max_iter:
+            it += 1
+            fx, status = self.evaluate(x, 0.0, inner)
+            if status in (NONFINITE, BAD_INPUT):
+                break
+            a1 = float(self.area[-1])
+            g1, bar = self.adhesion_at_one()
+            if a1 <= 0.0:
+                verdict = False
+                break
+            f = fx - x
+            res = float(np.max(np.abs(f) * w))
+            if not np.isfinite(res):
+                break
+            collapse = collapse + 1 if (g1 + bar < 0.0 and a1 < a_prev) else 0
+            a_prev = a1
+            if abs(g1) <= bar:
+                # the sign of gamma_eff(1) is within the diffusion error: solve tighter
+                inner = max(0.1 * inner, PULL_OFF_INNER_MIN)
+            if collapse >= PULL_OFF_COLLAPSE:
+                verdict = False
+                break
+            if res <= tol and g1 - bar > 0.0:
+                verdict = True
+                break
+            if collapse:
+                # plain relaxation: sigma_a(1) falls by the factor 1 - omega, never to 0
+                dX, dF, x_prev = [], [], None
+                x = x + omega * f
+                continue
+            if m_hist > 0 and x_prev is not None:
+                dX.append(x - x_prev)
+                dF.append(f - f_prev)
+                if len(dX) > m_hist:
+                    dX.pop(0)
+                    dF.pop(0)
+            x_prev, f_prev = x, f
+            if dX:
+                DX = np.array(dX).T
+                DF = np.array(dF).T
+                A = DF * w[:, None]
+                M = A.T @ A
+                M += np.eye(len(dX)) * (1e-10 * np.trace(M) + 1e-300)
+                gamma = np.linalg.solve(M, A.T @ (f * w))
+                step = omega * f - (DX + omega * DF) @ gamma
+            else:
+                step = omega * f
+            reach = PULL_OFF_TRUST * np.maximum(x, x[0])
+            big = float(np.max(np.abs(step) / np.where(reach > 0.0, reach, np.inf)))
+            if big > 1.0:
+                step = step / big
+            x = np.maximum(x + step, 0.0)
+        return {"sticky": verdict, "x": x.copy(), "area": self.area.copy(), "g1": g1,
+                "g1_error": bar, "iterations": it, "residual": res}
 
     def point(self, y0, x_start, rtol, *, m_hist, omega, trust, max_iter):
         """Branch point at y0 [Pa]: Anderson-accelerated fixed point with a trust region.
@@ -594,6 +712,60 @@ def _near_one_min(surface, e_star, work_of_adhesion, beta):
         else:
             lo = mid
     return float(np.exp(lo))
+
+
+def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
+                max_iter=PULL_OFF_REST_ITER):
+    """The contact state at p_nom = 0 on one grid and whether it is sticky.
+
+    Without ``x_start`` the compiled fixed point is solved at p_nom = 0 from full contact
+    (as :func:`persson_fast.solve_contact` does). Its state is sticky when A(zeta1) > 0 and
+    g1 = gamma_eff(1)/dgamma exceeds its error bar (:meth:`_Branch.adhesion_at_one`); not
+    sticky when A(zeta1) = 0; otherwise :meth:`_Branch.rest_state` decides from it (or
+    from ``x_start``) within ``max_iter`` iterations. The compiled fixed point measures its
+    residual against the largest sigma_a (at zeta1, ~sqrt(zeta1) c_1), so it stops with a
+    sigma_a(1) that can be wrong by far more than itself: at seed Delta gamma = 0.04 and
+    rtol 1e-3 it returned sigma_a(1) = 16 Pa and A(zeta1) = 1.25e-7 while F(x) had
+    sigma_a(1) = 0 (gamma_eff(1) < 0), a state on its way to A = 0.
+
+    Returns a dict: sticky (True, False or None: undecided), x (scaled sigma_a to start
+    the descent from), summary (n_zeta, area = A(zeta1)/A0, sigma_a_1 [Pa], gamma_eff_1 and
+    gamma_eff_1_error [J/m^2] = g1 dgamma and its error bar, sticky, iterations).
+    """
+    iterations = 0
+    if x_start is None:
+        outs, status, its, _, _ = _run(branch.G, branch.c, branch.wa, branch.wb, gamma_s,
+                                       np.array([0.0]), _inner_rtol(rtol), False, controls,
+                                       None, variant)
+        branch.solves += 1
+        iterations += int(its[0])
+        if status[0] not in (0, WALL_JUMP):
+            raise RuntimeError(f"pull_off: the contact problem failed at p_nom = 0 Pa "
+                               f"({summarize_status(status)[1]}); try a smaller rtol or a "
+                               f"finer zeta grid")
+        x, area = outs[1][0].copy(), outs[0][0].copy()
+        g1, bar = branch.adhesion_at_one(area, outs[7][0])
+        if area[-1] <= 0.0 or x[0] <= 0.0:
+            sticky = False
+        elif g1 - bar > 0.0:
+            sticky = True
+        else:
+            sticky = None
+    else:
+        x, sticky = np.array(x_start, dtype=float), None
+    if sticky is None:
+        r = branch.rest_state(x, rtol, m_hist=controls["m_hist"], omega=controls["omega"],
+                              max_iter=max_iter)
+        iterations += r["iterations"]
+        sticky, area, g1, bar = r["sticky"], r["area"], r["g1"], r["g1_error"]
+        if sticky:
+            x = r["x"]
+    dg = branch.work_of_adhesion
+    summary = {"n_zeta": int(branch.zeta.size), "area": float(area[-1]),
+               "sigma_a_1": float(x[0] * branch.scale), "gamma_eff_1": float(g1 * dg),
+               "gamma_eff_1_error": float(bar * dg), "sticky": sticky,
+               "iterations": iterations}
+    return {"sticky": sticky, "x": x, "summary": summary}
 
 
 def _inner_rtol(rtol, g1=1.0):
@@ -815,7 +987,8 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
         The coarsest of the nested magnification grids; the others are its refinements
         (:func:`refine_zeta`); from 1 to zeta1 = q1/q0, as in
         :func:`persson_fast.solve_contact`. Default: :func:`adhesion_zeta` at ``rtol`` with
-        its points near zeta = 1 extended down to :func:`_near_one_min`. [-]
+        its points near zeta = 1 extended down to :func:`_near_one_min`. Where the scene is
+        not sticky on it, its refinements are tried (see Notes). [-]
     controls : dict, optional
         Fixed-point controls (see :data:`ADHESION_DEFAULTS`); ``max_iter`` defaults to
         ``PULL_OFF_MAX_ITER`` here.
@@ -828,9 +1001,15 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     Returns
     -------
     sigma_c : float
-        Pull-off stress, >= 0; 0 when the surfaces are not macroscopically sticky. [Pa]
+        Pull-off stress, >= 0; 0 when the surfaces are not sticky (see Notes). [Pa]
     info : dict
         Only with ``full_output``:
+
+        - ``sticky``: whether the surfaces stick at p_nom = 0 (see Notes); ``reason``: why
+          sigma_c = 0 where they do not (``error_estimate`` 0 and ``converged`` True there);
+          ``rest``: per zeta grid tried, the state at p_nom = 0 (``n_zeta``, ``area`` =
+          A(zeta1)/A0, ``sigma_a_1`` [Pa], ``gamma_eff_1`` and ``gamma_eff_1_error``
+          [J/m^2], ``sticky`` True, False or None (undecided), ``iterations``);
 
         - ``error_estimate`` [Pa]: estimated error of sigma_c, the sum of ``error_parts``:
           ``zeta_grid`` (difference of the last two Richardson values at ``y0_grids``),
@@ -858,8 +1037,10 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     Raises
     ------
     RuntimeError
-        If the contact problem at p_nom = 0 fails, or a branch point used for sigma_c is
-        flagged by the diffusion kernel (resolution cap, far-field leak).
+        If the contact problem at p_nom = 0 fails, the branch cannot be left from p_nom = 0
+        although the state there is sticky (or undecided on the last grid tried), or a
+        branch point used for sigma_c is flagged by the diffusion kernel (resolution cap,
+        far-field leak).
 
     Warns
     -----
@@ -868,6 +1049,35 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
 
     Notes
     -----
+    **Stickiness.** Surfaces brought into full contact and unloaded to p_nom = 0 stick when
+    a contact state survives there: the fixed point of Eqs. 8-9 at p_nom = 0, started from
+    full contact, keeps A(zeta1) > 0 with gamma_eff(1) > 0, i.e. sigma_a(1) > 0 (at
+    p_nom = 0 the distribution starts on the wall unless sigma_a(1) > 0, so A > 0 needs
+    it). Where instead gamma_eff(1) <= 0, the wall sits where the distribution starts, the
+    contact vanishes (A = 0 is then the only state) and no tension is needed to separate
+    the surfaces: sigma_c = 0. The decision is made on the converged state, with an error
+    bar, not on the compiled fixed point's stopping point: that measures its residual
+    against the largest sigma_a (at zeta1, ~sqrt(zeta1) times sigma_a(1) at full contact),
+    so it can stop on a remnant on its way to A = 0 (seed scene, Delta gamma = 0.04, rtol
+    1e-3: A(zeta1) = 1.25e-7, sigma_a(1) = 16 Pa, while one more application of Eqs. 8-9
+    gives sigma_a(1) = 0). From that state the iteration continues at p_nom = 0
+    (:meth:`_Branch.rest_state`): not sticky once g1 = gamma_eff(1)/Delta gamma lies below
+    minus its error bar (propagated from the diffusion solves' area error estimates) on
+    ``PULL_OFF_COLLAPSE`` successive iterates while A(zeta1) falls; sticky once converged
+    (as a branch point) with g1 above its error bar; a state whose sign of g1 is within the
+    error bar is re-solved with 10x tighter diffusion solves. A sticky state may have a
+    tiny area: the onset is continuous (seed scene, converged threshold
+    Delta gamma_c = 0.05181 J/m^2: A(zeta1) at p_nom = 0 grows like
+    (Delta gamma - Delta gamma_c)^(1/2), 0.04 at 0.05185 and 0.11 at 0.052, and sigma_c
+    from 0: 13 kPa at 0.05185, 26 kPa at 0.0519, 50 kPa at 0.052), so a small area
+    or sigma_a(1) alone says nothing. The threshold moves with the zeta grid (second order;
+    seed: 0.05218 / 0.05190 / 0.05183 J/m^2 at 5 / 10 / 20 points per decade), so a scene
+    counts as not sticky only when it is not sticky on ``PULL_OFF_STICKY_GRIDS`` nested
+    grids (the coarsest and its refinements, the fewest the extrapolation of a sticky scene
+    uses); the first grid on which it is sticky becomes the coarsest. Within the finest
+    grid's threshold shift of Delta gamma_c (seed, rtol 1e-3: 2e-5 J/m^2, where sigma_c
+    < 7 kPa) a sticky scene can still come back as not sticky.
+
     On the contact branch of the fixed point of Eqs. 8-9 the nominal stress sigma0 is a
     function of y0 = sigma0 + sigma_a(zeta = 1), the start's distance from the wall, and the
     pull-off stress is -min sigma0 along the branch. Close to its end the branch flattens:
@@ -897,6 +1107,24 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     confirmed and warns. Seed scene on a 2-core machine: 0.55 / 1.7 / 8.9 / 18.8 s at rtol
     1e-3 / 1e-4 / 1e-5 / 1e-6, every value within its estimate of the reference.
     """
+    sigma_c, info, warning = _pull_off(
+        surface, e_star=e_star, work_of_adhesion=work_of_adhesion,
+        energy_correction=energy_correction, detachment_prefactor=detachment_prefactor,
+        rtol=rtol, zeta=zeta, controls=controls, bracket=bool(full_output and bracket))
+    if warning is not None:
+        import warnings
+
+        warnings.warn(warning, RuntimeWarning, stacklevel=2)
+    return (sigma_c, info) if full_output else sigma_c
+
+
+def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
+              detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None,
+              bracket=False):
+    """:func:`pull_off` without its warning: returns (sigma_c [Pa], info, warning), the
+    warning's text or None. Thread-safe (no warning filters touched), for callers that
+    record ``info["converged"]`` themselves (:func:`persson_fast.api._flag_lost_contact`).
+    """
     from .api import _check_rtol, _check_scene_args, _check_zeta
 
     t_start = time.perf_counter()
@@ -905,13 +1133,16 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
                                     energy_correction)
     info = {"solves": 0, "iterations": 0, "unconverged": 0, "error_estimate": 0.0,
             "error_parts": {}, "converged": True, "fold": False, "y0": 0.0, "grids": [],
-            "extrapolated": [], "branch": {}, "bracket": (0.0, 0.0), "time": 0.0}
+            "extrapolated": [], "branch": {}, "bracket": (0.0, 0.0), "time": 0.0,
+            "sticky": False, "reason": "", "rest": []}
     if dg == 0.0:
-        return (0.0, info) if full_output else 0.0
+        info["reason"] = "not sticky: no adhesion (work_of_adhesion = 0)"
+        return 0.0, info, None
     if zeta is None:
         z0 = adhesion_zeta(surface, rtol, near_one_min=_near_one_min(surface, e, dg, beta))
     else:
         z0 = _check_zeta(zeta, surface)
+    z_user = z0
     ctl = _controls(controls)
     if not (controls and "max_iter" in controls):
         ctl["max_iter"] = PULL_OFF_MAX_ITER
@@ -921,25 +1152,44 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     def make(grid):
         return _Branch(surface, grid, e, dg, beta, gamma_s, variant, ctl["n_damp"])
 
-    # the contact state at p_nom = 0 on the coarsest grid starts the descent
-    b0 = make(z0)
-    outs, status, iterations, _, _ = _run(b0.G, b0.c, b0.wa, b0.wb, gamma_s, np.array([0.0]),
-                                          _inner_rtol(rtol), False, ctl, None, variant)
-    info["solves"] += 1
-    info["iterations"] += int(iterations[0])
-    if status[0] not in (0, WALL_JUMP):
-        raise RuntimeError(f"pull_off: the contact problem failed at p_nom = 0 Pa "
-                           f"({summarize_status(status)[1]}); try a smaller rtol or a finer "
-                           f"zeta grid")
-    x_p0 = outs[1][0]
-    if outs[0][0, -1] <= 0.0 or x_p0[0] <= 0.0:
+    # the contact state at p_nom = 0 (from full contact) starts the descent on the coarsest
+    # grid on which it is sticky; on none of PULL_OFF_STICKY_GRIDS nested grids: sigma_c = 0
+    z_try, rest_branches = z0, []
+    for _ in range(PULL_OFF_STICKY_GRIDS):
+        b0 = make(z_try)
+        rest = _rest_start(b0, rtol, ctl, gamma_s, variant)
+        info["rest"].append(rest["summary"])
+        info["iterations"] += rest["summary"]["iterations"]
+        if rest["sticky"] is not False:
+            x_p0 = rest["x"]
+            samples, y_best, tail, fold, lost = _descend(b0, x_p0, x_p0[0] * b0.scale, rtol,
+                                                         ctl)
+            ok = sorted((s for s in samples if s["converged"]), key=lambda s: -s["y0"])
+            if ok:
+                break
+            if rest["sticky"] or len(info["rest"]) == PULL_OFF_STICKY_GRIDS:
+                raise RuntimeError(
+                    f"pull_off: the contact branch could not be followed from p_nom = 0 on a "
+                    f"zeta grid of {b0.zeta.size} points (the contact state there is "
+                    + ("sticky" if rest["sticky"] else "undecided: the scene lies within the "
+                       "grid's resolution of the stickiness threshold") + "); try another rtol "
+                    "or a finer zeta grid")
+            # undecided and no branch: as not sticky on this grid; the finer grid decides
+        rest_branches.append(b0)
+        z_try = refine_zeta(z_try)
+    else:
+        undecided = sum(r["sticky"] is None for r in info["rest"])
+        info["reason"] = (
+            f"not sticky: at p_nom = 0 the fixed point falls to the separated state (A = 0; "
+            f"gamma_eff(1) < 0 beyond its error bar, or no contact) on the nested zeta grids "
+            f"of {', '.join(str(r['n_zeta']) for r in info['rest'])} points"
+            + (f" (on {undecided} of them undecided, and no contact branch leaves p_nom = 0)"
+               if undecided else ""))
+        info["solves"] += sum(b.solves for b in rest_branches)
         info["time"] = time.perf_counter() - t_start
-        return (0.0, info) if full_output else 0.0      # not sticky: no contact in tension
-
-    samples, y_best, tail, fold, lost = _descend(b0, x_p0, x_p0[0] * b0.scale, rtol, ctl)
-    ok = sorted((s for s in samples if s["converged"]), key=lambda s: -s["y0"])
-    if not ok:
-        raise RuntimeError("pull_off: the contact branch could not be followed from p_nom = 0")
+        return 0.0, info, None
+    z0 = z_try
+    info["sticky"] = True
     best = min(ok, key=lambda s: s["sigma0"])
     # the nested grids are compared at y_g, a few stages above the end, where the fixed
     # point is robust; the change of sigma0 from y_g to the end (the part of the branch the
@@ -1024,36 +1274,32 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
                                f"smaller rtol or a finer zeta grid")
     error = err_grid + err_t + err_tail + err_inner
     converged = bool(error <= rtol * sigma_c and not lost)
+    warning = None
     if not converged:
-        import warnings
-
-        warnings.warn(f"pull_off: estimated error {error:.3g} Pa of sigma_c = {sigma_c:.6g} Pa "
-                      f"exceeds rtol * sigma_c" + ("; a branch point failed" if lost else ""),
-                      RuntimeWarning, stacklevel=2)
-    if full_output:
-        info["solves"] += sum(b.solves for b in branches)
-        info["iterations"] += sum(p["iterations"] for p in samples + used) + check["iterations"]
-        info["unconverged"] = sum(not p["converged"] for p in samples) + sum(
-            not p["converged"] for p in used)
-        info["error_estimate"] = float(error)
-        info["error_parts"] = {"zeta_grid": float(err_grid), "end_zeta_grid": float(err_t),
-                               "tail": err_tail, "inner": float(err_inner)}
-        info["converged"] = converged
-        info["fold"] = bool(fold)
-        info["y0"] = float(best["y0"])
-        info["y0_grids"] = float(y_g)
-        info["end_correction"] = (float(-t_coarse), None if t_fine is None else float(-t_fine))
-        info["grids"] = [(int(b.zeta.size), float(-s_)) for b, s_ in zip(branches, ends)]
-        info["extrapolated"] = [float(-r) for r in rich]
-        info["branch"] = {"y0": np.array([p["y0"] for p in ok]),
-                          "sigma0": np.array([p["sigma0"] for p in ok]),
-                          "area": np.array([p["area"][-1] for p in ok])}
-        if bracket:
-            upper = max(sigma_c + error, float(-min(ends))) * (1.0 + 2.0 * rtol)
-            z_solver = adhesion_zeta(surface, rtol) if zeta is None else z0
-            info["bracket"], n = _solver_bracket(surface, z_solver, e, dg, energy_correction,
-                                                 beta, rtol, controls, upper)
-            info["solves"] += n
-        info["time"] = time.perf_counter() - t_start
-        return sigma_c, info
-    return sigma_c
+        warning = (f"pull_off: estimated error {error:.3g} Pa of sigma_c = {sigma_c:.6g} Pa "
+                   f"exceeds rtol * sigma_c" + ("; a branch point failed" if lost else ""))
+    info["solves"] += sum(b.solves for b in branches + rest_branches)
+    info["iterations"] += sum(p["iterations"] for p in samples + used) + check["iterations"]
+    info["unconverged"] = sum(not p["converged"] for p in samples) + sum(
+        not p["converged"] for p in used)
+    info["error_estimate"] = float(error)
+    info["error_parts"] = {"zeta_grid": float(err_grid), "end_zeta_grid": float(err_t),
+                           "tail": err_tail, "inner": float(err_inner)}
+    info["converged"] = converged
+    info["fold"] = bool(fold)
+    info["y0"] = float(best["y0"])
+    info["y0_grids"] = float(y_g)
+    info["end_correction"] = (float(-t_coarse), None if t_fine is None else float(-t_fine))
+    info["grids"] = [(int(b.zeta.size), float(-s_)) for b, s_ in zip(branches, ends)]
+    info["extrapolated"] = [float(-r) for r in rich]
+    info["branch"] = {"y0": np.array([p["y0"] for p in ok]),
+                      "sigma0": np.array([p["sigma0"] for p in ok]),
+                      "area": np.array([p["area"][-1] for p in ok])}
+    if bracket:
+        upper = max(sigma_c + error, float(-min(ends))) * (1.0 + 2.0 * rtol)
+        z_solver = adhesion_zeta(surface, rtol) if zeta is None else z_user
+        info["bracket"], n = _solver_bracket(surface, z_solver, e, dg, energy_correction,
+                                             beta, rtol, controls, upper)
+        info["solves"] += n
+    info["time"] = time.perf_counter() - t_start
+    return sigma_c, info, warning

@@ -403,23 +403,26 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     ends separated, :func:`persson_fast.pull_off` (at rtol clipped to LOST_CONTACT_RTOL) says
     whether contact exists there; such pressures get status LOST_CONTACT, and so do those
     within its error estimate of sigma_c, where separation cannot be confirmed.
+
+    pull_off's own warning (estimate above its rtol) is not issued here: the private
+    :func:`persson_fast.adhesion._pull_off` returns it instead, and its error estimate
+    already widens the flagged band. No warning filter is touched, so this is safe on the
+    worker threads of a scan (``warnings.catch_warnings`` is not thread-safe before
+    Python 3.14 and could leave an 'ignore' filter behind for good).
     """
     from dataclasses import replace
 
     from ._kernels.status import LOST_CONTACT
-    from .adhesion import pull_off
+    from .adhesion import _pull_off
 
     sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
     if not np.any(sep):
         return res
     rtol_c = min(max(rtol, LOST_CONTACT_RTOL[0]), LOST_CONTACT_RTOL[1])
     try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            sigma_c, info = pull_off(surface, e_star=e_star, work_of_adhesion=dg,
+        sigma_c, info, _ = _pull_off(surface, e_star=e_star, work_of_adhesion=dg,
                                      energy_correction=energy_correction,
-                                     detachment_prefactor=beta, rtol=rtol_c, full_output=True,
-                                     bracket=False)
+                                     detachment_prefactor=beta, rtol=rtol_c, bracket=False)
     except RuntimeError as exc:
         note = f"; separated tensions not checked against the pull-off stress ({exc})"
         return replace(res, message=res.message + note)

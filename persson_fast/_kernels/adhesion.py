@@ -15,9 +15,10 @@ The fixed point x = sigma_a is solved by Anderson acceleration (type II, ``m_his
 iterates, least squares by normal equations with Tikhonov guard) or, with ``m_hist = 0``, by
 plain under-relaxation with factor ``omega``. Start: the full-contact detachment stress (A = 1),
 which also serves nominal tension (sigma0 < 0). In tension, an iteration that leaves the
-contact branch (its iterates map to "no adhesion anywhere", or the contact area vanishes)
-(or stalls with a contact area below rtol) ends in the separated state A = 0; contact solutions beyond the end of the contact branch
-are not searched for.
+contact branch (its iterates map to "no adhesion anywhere"; or the step safeguard has to hold
+the iterate at the wall and the map again puts the wall past the start, sigma0 + F(x)_0 <= 0;
+or it stalls with a contact area below rtol) ends in the separated state A = 0; contact
+solutions beyond the end of the contact branch are not searched for.
 """
 from __future__ import annotations
 
@@ -184,6 +185,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     best = np.inf
     best_mark = np.inf
     lost = 0
+    pinned = False
     it_mark = 0
     rtol_it = 1e-3
     while it < max_iter:
@@ -216,7 +218,14 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             best = residual
         if it - it_mark > STALL_ITERATIONS:
             break
-        lost = lost + 1 if (fx[0] == 0.0 and x[0] > 0.0 and sigma0 < 0.0) else 0
+        # the branch is lost when the iterates map to 'no adhesion anywhere', or when the
+        # iterate sits at the wall only because the safeguard below held it there and the map
+        # again puts the wall past the start (sigma0 + F(x)_0 <= 0: the tension exceeds the
+        # adhesion the contact can muster). Without the second test a tension below the
+        # pull-off stress (or on a surface that is not sticky) stalled against the
+        # safeguard and came back as not converged instead of separated
+        beyond = pinned and sigma0 + fx[0] <= 0.0
+        lost = lost + 1 if ((fx[0] == 0.0 or beyond) and x[0] > 0.0 and sigma0 < 0.0) else 0
         if lost >= LOST_ITERATIONS:
             break
         if residual <= tol:
@@ -228,6 +237,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             # separated and the wall keeps closing: no contact is the fixed point
             for i in range(n):
                 x[i] = fx[i]
+            pinned = False
             continue
         # Anderson (type II) step, or plain relaxation when m_hist == 0
         if m_hist > 0 and it > 1:
@@ -273,7 +283,9 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         # safeguard: a step must not carry a contact state across the wall (y0 <= 0), where
         # separation would lock in; backtrack towards the last iterate and drop the history
         y_min = 1e-6 * abs(sigma0)
+        pinned = False
         if sigma0 + x_prev[0] > y_min and sigma0 + x[0] <= y_min:
+            pinned = True
             for _ in range(60):
                 for i in range(n):
                     x[i] = x_prev[i] + 0.5 * (x[i] - x_prev[i])
