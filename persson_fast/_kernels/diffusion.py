@@ -65,6 +65,9 @@ PECLET_CAP = 0.25      # ... and never above this (coarse tolerances)
 WORK_MAX = 4e6       # coarse node-steps above which resolution is cut (and flagged), rtol >= 1e-6
 WORK_GROWTH_MAX = 30.0  # below rtol = 1e-6 the cap grows as (1e-6/rtol)^(1/2), as the work of a
                         # plain "cn" scene does, up to this factor (rtol = 1.1e-9)
+WORK_TOTAL = 16.0     # hard cap on the node-steps of all runs of a solve (the ladder's three
+                      # runs and its refinements; one forced step per schedule piece aside),
+                      # in units of the work cap: the plain ladder takes ~5.25x its coarse work
 MAX_LEVELS = 8        # at most 2^8 times finer at the start than at the end
 N_MAX = 4096          # node cap of the coarse grid
 MAX_REFINE = 3        # a-posteriori refinements at most (each doubles nodes and steps)
@@ -446,8 +449,7 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                 m = int(math.ceil(lng * n_steps_per_lng - 1e-9))
                 # the wall may travel at most 1/n_steps_per_width of the profile width per step
                 per_width = n_steps_per_width if v < 0.0 else n_steps_per_width * RECEDING_FACTOR
-                m_wall = int(math.ceil(abs(sa_stop - sa_cur) / math.sqrt(2.0 * g_cur)
-                                       * per_width - 1e-9))
+                m_wall = _wall_steps(g_cur, g_stop, sa_cur, sa_stop, per_width)
                 if m_wall > m:
                     m = m_wall
                 if m < 1:
@@ -524,16 +526,61 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
 
 
 @njit_serial
+def _wall_steps(g_a, g_b, sa_a, sa_b, per_width):
+    """Steps (uniform in ln G) that keep the wall's travel per step within 1/``per_width`` of
+    the profile width sqrt(2G) at the step's start, on a linear piece [g_a, g_b].
+
+    With L = ln(g_b/g_a), m steps of ratio r = e^(L/m) and slope b, the last step travels
+    b g_b (1 - 1/r) over a width sqrt(2 g_b / r): the ratio b sqrt(g_b/2) 2 sinh(L/(2m)),
+    the largest of the piece. For a short piece this is the plain |sa_b - sa_a| per_width /
+    sqrt(2 g_a); over many e-folds the width grows with the wall's travel (a fast receding
+    wall from a tiny start distance: the plain count gave 1e10 steps where 200 do).
+    """
+    d = abs(sa_b - sa_a)
+    if d == 0.0 or per_width <= 0.0:
+        return 0
+    lng = math.log(g_b / g_a)
+    c = per_width * d / (g_b - g_a) * math.sqrt(0.5 * g_b)
+    # 2 sinh(L/(2m)) <= 1/c  <=>  m >= L / (2 asinh(1/(2c)))
+    m = lng / (2.0 * math.asinh(0.5 / c))
+    if not m < 9e18:
+        return np.int64(9e18)
+    return int(math.ceil(m - 1e-9))
+
+
+@njit_serial
 def _piece_steps(g_a, g_b, sa_a, sa_b, n_steps_per_lng, n_steps_per_width):
     """Steps :func:`march` takes on a piece [g_a, g_b] of the wall (before ``refine``)."""
     m = int(math.ceil(math.log(g_b / g_a) * n_steps_per_lng - 1e-9))
     per_width = n_steps_per_width if sa_b < sa_a else n_steps_per_width * RECEDING_FACTOR
-    m_wall = int(math.ceil(abs(sa_b - sa_a) / math.sqrt(2.0 * g_a) * per_width - 1e-9))
+    m_wall = _wall_steps(g_a, g_b, sa_a, sa_b, per_width)
     if m_wall > m:
         m = m_wall
     if m < 1:
         m = 1
     return m
+
+
+@njit_serial
+def _schedule_steps(G_k, sa_k, i_first, g_start, nper, nper_width, piece_flags, refine,
+                    n_levels):
+    """Steps one run of :func:`march` takes beyond the one step per piece that the schedule
+    forces (a dense schedule's steps are the caller's, not resolution: they are not capped;
+    damping aside; each coarsening may split a piece: one more step per level)."""
+    total = 0.0
+    g_prev = g_start
+    sa_prev = boundary_at(G_k, sa_k, g_start)
+    for i in range(i_first, G_k.shape[0]):
+        g = G_k[i]
+        if g > g_prev:
+            m = _piece_steps(g_prev, g, sa_prev, sa_k[i], nper, nper_width) - 1
+            if piece_flags[i] & PIECE_HALVE and refine >= 2:
+                total += m * (refine // 2)
+            else:
+                total += m * refine
+            g_prev = g
+        sa_prev = sa_k[i]
+    return total + (n_levels + 1) * refine
 
 
 @njit_serial
@@ -887,8 +934,13 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             continue
         sa_prev = boundary_at(G_k, sa_k, g_prev)
         pw = nper_width if sa_k[k] < sa_prev else nper_width * RECEDING_FACTOR
-        m_need += max(math.log(g_k / g_prev) * nper,
-                      abs(sa_k[k] - sa_prev) / math.sqrt(2.0 * g_prev) * pw)
+        lng = math.log(g_k / g_prev)
+        d_sa = abs(sa_k[k] - sa_prev)
+        m_w = 0.0
+        if d_sa > 0.0:
+            m_w = lng / (2.0 * math.asinh(0.5 / (pw * d_sa / (g_k - g_prev)
+                                                  * math.sqrt(0.5 * g_k))))
+        m_need += max(lng * nper, m_w)
         g_prev = g_k
     if m_need < 1.0:
         m_need = 1.0
@@ -904,10 +956,10 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
         h_c = h_new
         nper *= f_t
         nper_width *= f_t
+        # (no floor on the steps per width travelled: a floor let a fast wall force 1e8
+        # steps past the cap; the steps per ln G are bounded by the range of ln G)
         if nper < 0.05:
             nper = 0.05
-        if nper_width < 0.05:
-            nper_width = 0.05
         work_need = work_max
     # the start may be narrower than h_c resolves: begin finer, then coarsen by factors of 2
     # each time the profile width (sqrt(2G)/w, at most 1/sqrt 2) has grown past r_std new
@@ -960,6 +1012,26 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
     piece_flags = np.zeros(nt + 1, dtype=np.int64)
     keep = np.ones(nt + 1, dtype=np.bool_)
     keep_all = np.ones(nt + 1, dtype=np.bool_)
+    # hard cap on the work of all runs: the first ladder (runs of n_half, 2 n_half, 4 n_half
+    # intervals at 1/2, 1, 2 times the coarse steps, beyond one step per piece) must fit in
+    # WORK_TOTAL work_max; where the steps a fast wall forces on a piece make it miss, the
+    # step densities are cut further (flagged)
+    work_total = WORK_TOTAL * work_max
+    for _ in range(4):
+        w1 = 0.0
+        for jj in range(3):
+            w1 += (_schedule_steps(G_k, sa_k, i_first, g_start, nper_h, nper_width_h,
+                                   piece_flags, np.int64(1 << jj), n_levels)
+                   * ((n_half << jj) + 1))
+        if w1 <= work_total:
+            break
+        status = st.GRID_CAP
+        cap_status = status
+        f_w = 0.9 * work_total / w1
+        nper *= f_w
+        nper_width *= f_w
+        nper_h = 0.5 * nper
+        nper_width_h = 0.5 * nper_width
     n_keep = _pair_pieces(G_k, sa_k, i_first, g_start, nper, nper_width, coarsen_at,
                           piece_flags, keep)
     G_t = np.empty(n_keep)
@@ -981,6 +1053,7 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
     t_det_load = np.empty(n_keep)
     j = 0
     met = True
+    work_0 = counts[2]
     while True:
         n_j = n_half << j
         if n_j + 1 > size:
@@ -1021,6 +1094,14 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             # first pair
             if (j - 2 >= MAX_REFINE or 4.0 ** (j - 1) * work_need > work_max
                     or (n_half << j) > N_MAX):
+                break
+            # ... and the next run within the hard cap of all runs (steps a fast wall forces
+            # on a piece included)
+            if (counts[2] - work_0 + _schedule_steps(G_k, sa_k, i_first, g_start, nper_h,
+                                                      nper_width_h, piece_flags,
+                                                      np.int64(1 << (j + 1)), n_levels)
+                    * ((n_half << (j + 1)) + 1) > work_total):
+                status = st.GRID_CAP
                 break
         j += 1
     counts[0] = (n_half << (j - 1)) + 1
