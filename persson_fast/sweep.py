@@ -23,8 +23,7 @@ BLOCKS_PER_THREAD = 4
 #: the values of ``parallel`` a caller may pass
 PARALLEL_CHOICES = (None, False, True, "threads", "prange")
 
-_pool = None
-_pool_threads = 0
+_pools = {}
 _pool_lock = threading.Lock()
 _on_worker = threading.local()
 _prange_lock = threading.Lock()
@@ -95,18 +94,18 @@ def _block_bounds(n: int, blocks: int):
 
 
 def _get_pool(threads: int):
-    global _pool, _pool_threads
+    """The package's pool of ``threads`` workers (one pool per thread count, kept for the
+    process: a caller on another Python thread may still be submitting to a pool, so none is
+    ever shut down while the process runs)."""
     with _pool_lock:
-        if _pool is None or _pool_threads != threads:
+        pool = _pools.get(threads)
+        if pool is None:
             from concurrent.futures import ThreadPoolExecutor
 
-            old = _pool
-            _pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="persson_fast",
-                                       initializer=_mark_worker)
-            _pool_threads = threads
-            if old is not None:
-                old.shutdown(wait=False)
-        return _pool
+            pool = ThreadPoolExecutor(max_workers=threads, thread_name_prefix="persson_fast",
+                                      initializer=_mark_worker)
+            _pools[threads] = pool
+        return pool
 
 
 def _mark_worker():
