@@ -186,7 +186,9 @@ def test_nonlinear_wall_vs_grid(coef, sigma0, n):
     G, sa = sqrt_wall(coef=coef, n=n)
     status, area, load, det, det_load, err, counts = bnr(G, sa, sigma0, rtol)
     assert status == st.OK
-    g_status, g_area, g_load, g_det, g_det_load, g_err = grid(G, sa, sigma0, 1e-9)
+    # the grid reference 100x tighter than the rtol tested (at 1e-9 cn may now flag that
+    # its estimate, ~2.5e-9, misses; a flagged reference is no reference)
+    g_status, g_area, g_load, g_det, g_det_load, g_err = grid(G, sa, sigma0, 1e-8)
     assert g_status == st.OK
     assert np.min(g_area) > 1e-3
     assert scaled_error(area, g_area, rtol) < 1.0
