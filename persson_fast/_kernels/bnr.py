@@ -506,29 +506,10 @@ NOTHING_FIT = -1      # internal: not even the coarsest triple fits under N_MAX 
 @njit_serial
 def _solve_core(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, out_det_load,
                 out_error, counts):
-    """Contact area and load bookkeeping of one nominal pressure from the BNR integral equation.
+    """The BNR solve of one pressure on the wall as given (every sample kept).
 
-    Parameters
-    ----------
-    G : ndarray, shape (n_t,)
-        Non-decreasing diffusion times, G[0] >= 0. Repeated values are allowed only with equal
-        sa (a wall jump is BAD_INPUT). [stress^2]
-    sa : ndarray, shape (n_t,)
-        Detachment stress sigma_a at those times (wall at -sa), linear in G in between,
-        sa[0] before G[0]. [stress]
-    sigma0 : float
-        Nominal stress (compressive > 0), same unit as sqrt(G). [stress]
-    rtol : float
-        Target relative accuracy of the area (used when ``level = -1``). [-]
-    level : int
-        -1: resolution from rtol, refined adaptively; L >= 0: the fixed runs N_L, 2 N_L,
-        4 N_L with N_L = N_0 2^L (each level doubles the nodes; level 0 a coarse base). [-]
-    out_area, out_load, out_det_area, out_det_load, out_error : ndarray, shape (n_t,)
-        Written in place: A/A0, load int sigma P dsigma, detached area 1 - A, detached load
-        int sigma_a g dG, and an error estimate of the area (see the module notes).
-    counts : ndarray of int64, shape (>= 3,)
-        Written in place: [0] nodes of the finest run, [1] kernel (Psi) evaluations of all
-        runs together (free term included: one per node), [2] the same number (work units).
+    Arguments and outputs as :func:`solve_bnr_one`, which wraps this with the thinning of
+    walls that have more points than the node cap allows.
 
     Returns
     -------
