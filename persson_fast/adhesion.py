@@ -365,8 +365,11 @@ PULL_OFF_TAIL = 0.25
 #: c_1 g1^(1/2) moves by dA/(2 g1) relative for an error dA of the area profile, and
 #: measured at the end of the seed scene's branch (2 g1 = 0.2) one application of Eqs. 8-9
 #: moved sigma_a(1) by up to 7x the diffusion tolerance (1.5 Pa at 3e-7; 0.1 Pa between
-#: 3e-8 and 3e-10); the factor keeps that at about 0.35 rtol
-PULL_OFF_INNER = 0.25
+#: 3e-8 and 3e-10); the factor keeps that at about 0.35 rtol. Since the cn kernel reports the
+#: error of its extrapolated value (about 2x the actual error, no longer a large over-
+#: estimate) it stops at a coarser grid for the same tolerance: 0.25 left the seed's inner
+#: error at 0.78 Pa (1.0e-6 sigma_c) at rtol 1e-6, 0.05 brings it to the 5e-7 floor
+PULL_OFF_INNER = 0.05
 PULL_OFF_INNER_MIN = 1e-9
 #: diffusion tolerance of an early iteration of a branch point, relative to its residual
 #: (one application of Eqs. 8-9 has an error of up to ~10x the diffusion tolerance)
@@ -400,6 +403,9 @@ PULL_OFF_MAX_GRIDS = 5
 #: come out small by chance
 PULL_OFF_INNER_CHECK = 4.0
 PULL_OFF_INNER_FLOOR = 5e-7
+#: weight of the error of a branch point flagged RTOL_NOT_MET in sigma_c (|4/3| + |1/3|,
+#: its largest weight in a Richardson value)
+PULL_OFF_FLAG_WEIGHT = 5.0 / 3.0
 #: resolution of the optional bracket of where solve_contact stops finding contact
 PULL_OFF_BRACKET_RTOL = 1e-4
 #: early stages run at this fraction of their relative change of sigma0 (at most 1e-3)
@@ -667,7 +673,24 @@ class _Branch:
         converged = out is not None
         return {"y0": float(y0), "sigma0": float((y - x[0]) * self.scale), "x": x.copy(),
                 "area": self.area.copy(), "area_error": self.area_error.copy(),
-                "status": status, "iterations": it, "residual": res, "converged": converged}
+                "status": status, "iterations": it, "residual": res, "converged": converged,
+                "flag_error": self.flag_error(status)}
+
+    def flag_error(self, status):
+        """Error of sigma0 [Pa] charged for a last diffusion solve flagged RTOL_NOT_MET.
+
+        Such a solve still returns its best area profile and its error estimate; the
+        estimate moves gamma_eff(1)/dgamma = g1 by its error bar (:meth:`adhesion_at_one`),
+        and sigma_a(1) = c_1 g1^(1/2) (so sigma0 = y0 - sigma_a(1) at fixed y0) by the
+        corresponding interval, doubled for the fixed point's response. 0 when not flagged.
+        """
+        from ._kernels.status import RTOL_NOT_MET
+
+        if status != RTOL_NOT_MET:
+            return 0.0
+        g1, bar = self.adhesion_at_one()
+        lo, hi = np.sqrt(max(g1 - bar, 0.0)), np.sqrt(max(g1 + bar, 0.0))
+        return float(2.0 * self.c[0] * self.scale * (hi - lo))
 
     def follow(self, y0, starts, rtol, controls):
         """Branch point at y0 from the first start that converges (normal, then cautious)."""
@@ -732,6 +755,8 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
     the descent from), summary (n_zeta, area = A(zeta1)/A0, sigma_a_1 [Pa], gamma_eff_1 and
     gamma_eff_1_error [J/m^2] = g1 dgamma and its error bar, sticky, iterations).
     """
+    from ._kernels.status import RTOL_NOT_MET
+
     iterations = 0
     if x_start is None:
         outs, status, its, _, _ = _run(branch.G, branch.c, branch.wa, branch.wb, gamma_s,
@@ -739,7 +764,7 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
                                        None, variant)
         branch.solves += 1
         iterations += int(its[0])
-        if status[0] not in (0, WALL_JUMP):
+        if status[0] not in (0, WALL_JUMP, RTOL_NOT_MET):
             raise RuntimeError(f"pull_off: the contact problem failed at p_nom = 0 Pa "
                                f"({summarize_status(status)[1]}); try a smaller rtol or a "
                                f"finer zeta grid")
@@ -940,6 +965,8 @@ def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, 
     contact state at the nearest tension with contact. Returns ((lo, hi), solves): contact
     found at tension lo, none at hi [Pa].
     """
+    from ._kernels.status import RTOL_NOT_MET
+
     solves = 0
 
     def contact(sigma0, start):
@@ -949,7 +976,7 @@ def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, 
                                    detachment_prefactor=beta, rtol=rtol, parallel=False,
                                    controls=controls, zeta_given=True, start=start)
         solves += 1
-        if r.status[0] not in (0, WALL_JUMP):
+        if r.status[0] not in (0, WALL_JUMP, RTOL_NOT_MET):
             return False, r
         return r.area[0] > 0, r
 
@@ -1101,7 +1128,7 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
 
     sigma_a(1) = c_1 (gamma_eff(1)/dgamma)^(1/2) magnifies an error of the area profile by
     dgamma/(2 gamma_eff(1)), so the diffusion solves of a branch point run at
-    ``PULL_OFF_INNER * rtol * min(1, 2 gamma_eff(1)/dgamma)`` (5e-8 at the end of the seed
+    ``PULL_OFF_INNER * rtol * min(1, 2 gamma_eff(1)/dgamma)`` (1e-8 at the end of the seed
     scene's branch for rtol = 1e-6). The inner part of the estimate is never below
     ``PULL_OFF_INNER_FLOOR * sigma_c`` (5e-7), so an rtol below about 5e-7 cannot be
     confirmed and warns. Seed scene on a 2-core machine: 0.55 / 1.7 / 8.9 / 18.8 s at rtol
@@ -1125,6 +1152,7 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     warning's text or None. Thread-safe (no warning filters touched), for callers that
     record ``info["converged"]`` themselves (:func:`persson_fast.api._flag_lost_contact`).
     """
+    from ._kernels.status import RTOL_NOT_MET
     from .api import _check_rtol, _check_scene_args, _check_zeta
 
     t_start = time.perf_counter()
@@ -1216,6 +1244,17 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
         b = make(grid)
         branches.append(b)
         p = b.follow(y_g, [_interp_profile(grid, prev_z, prev_x) / b.scale], rtol, ctl)
+        if not p["converged"]:
+            # near the stickiness threshold the branch moves much with the grid (the
+            # threshold does): walk this grid's own branch down the coarse ladder to y_g,
+            # from the coarse grid's state at p_nom = 0
+            ladder = [s["y0"] for s in ok if s["y0"] >= y_g]
+            start = _interp_profile(grid, b0.zeta, ok[0]["x"] * b0.scale)
+            walk = _replay(b, ladder, start, rtol, ctl)
+            if walk and walk[-1]["converged"] and walk[-1]["y0"] == y_g:
+                walk[-1]["iterations"] += p["iterations"] + sum(
+                    q["iterations"] for q in walk[:-1])
+                p = walk[-1]
         used.append(p)
         if not p["converged"]:
             lost = True
@@ -1263,16 +1302,21 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     err_inner = abs(check["sigma0"] - best["sigma0"])
     if tighter:
         err_inner *= PULL_OFF_INNER_CHECK / (PULL_OFF_INNER_CHECK - 1.0)
-    if not check["converged"] or check["status"] not in (0, WALL_JUMP):
+    if not check["converged"] or check["status"] not in (0, WALL_JUMP, RTOL_NOT_MET):
         err_inner += rtol * sigma_c
     err_inner = max(err_inner, PULL_OFF_INNER_FLOOR * sigma_c)
+    # a diffusion solve flagged RTOL_NOT_MET (refined to its work cap) still returns its
+    # best value: its estimated error is charged, with the largest weight (4/3 + 1/3) a
+    # point gets in the Richardson values, instead of failing
+    err_flag = PULL_OFF_FLAG_WEIGHT * (
+        sum(p["flag_error"] for p in used if p["converged"]) + check["flag_error"])
     err_tail = float(tail)
     for p in used:
-        if p["converged"] and p["status"] not in (0, WALL_JUMP):
+        if p["converged"] and p["status"] not in (0, WALL_JUMP, RTOL_NOT_MET):
             raise RuntimeError(f"pull_off: a branch point at y0 = {p['y0']!r} Pa was flagged "
                                f"({summarize_status(np.array([p['status']]))[1]}); try a "
                                f"smaller rtol or a finer zeta grid")
-    error = err_grid + err_t + err_tail + err_inner
+    error = err_grid + err_t + err_tail + err_inner + err_flag
     converged = bool(error <= rtol * sigma_c and not lost)
     warning = None
     if not converged:
@@ -1284,7 +1328,8 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
         not p["converged"] for p in used)
     info["error_estimate"] = float(error)
     info["error_parts"] = {"zeta_grid": float(err_grid), "end_zeta_grid": float(err_t),
-                           "tail": err_tail, "inner": float(err_inner)}
+                           "tail": err_tail, "inner": float(err_inner),
+                           "flagged": float(err_flag)}
     info["converged"] = converged
     info["fold"] = bool(fold)
     info["y0"] = float(best["y0"])
