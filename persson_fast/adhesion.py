@@ -238,7 +238,7 @@ def warm_adhesion(prange: bool = False) -> None:
     w = np.array([0.1, 0.1])
     ctl = _controls(None)
     for par in ((False, "prange") if prange else (False,)):
-        _run(G, c, w, w, -1.0, np.array([1.0]), 1e-2, par, ctl)
+        _run(G, c, w, w, -1.0, np.array([1.0, 2.0]), 1e-2, par, ctl)  # 1 row runs serially
 
 
 def _controls(overrides):

@@ -342,7 +342,7 @@ def test_adhesion_in_tension_bitwise_equal_to_serial(modes_used):
 
 
 def wall_scene():
-    """A smooth curved wall sigma_a(G) [Pa] and pressures from just above -sigma_a(0)."""
+    """A smooth curved wall sigma_a(G) [Pa] and pressures from -0.25 Pa (-sigma_a(0) = -0.3 Pa)."""
     G = np.linspace(0.0, 4.0, 20) ** 2                           # [Pa^2]
     sigma_a = 0.3 + 0.2 * np.sqrt(G) - 0.01 * G                    # [Pa]
     p = np.concatenate([[-0.25, -0.1, 0.0], np.geomspace(1e-3, 20.0, 18)])
@@ -415,6 +415,17 @@ def test_default_is_threads_from_the_first_call():
     assert sweep.choose_parallel(None, sweep.PARALLEL_MIN_PRESSURES) == "threads"
     assert sweep.choose_parallel(None, sweep.PARALLEL_MIN_PRESSURES - 1) == "serial"
     assert sweep.choose_parallel(True, 2) == "threads"
+
+
+def test_warmup_prange_reaches_the_adhesive_prange_sweep(monkeypatch):
+    """``warmup(prange=True)`` compiles the adhesive ``prange`` sweep too (a warm-up of one
+    pressure would run serially and leave it to the first real call). The kernel is replaced
+    by a recorder: nothing is compiled here."""
+    calls = []
+    monkeypatch.setattr(adhesion_module, "adhesive_sweep_parallel",
+                        lambda *args: calls.append(len(args[6])))
+    adhesion_module.warm_adhesion(prange=True)     # what pf.warmup(prange=True) calls
+    assert calls, "warmup(prange=True) never called the adhesive prange sweep"
 
 
 # --- several processes on one disk cache -------------------------------------------------
