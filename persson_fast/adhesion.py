@@ -430,6 +430,38 @@ PULL_OFF_REST_ITER = 30
 PULL_OFF_STICKY_GRIDS = 3
 
 
+class _AndersonHistory:
+    """The past iterates of an Anderson (type II) iteration of the branch points, and its step:
+    least squares by normal equations with a Tikhonov guard, weights ``w``, relaxation
+    ``omega``; ``m_hist`` = 0 gives plain relaxation."""
+
+    def __init__(self, m_hist):
+        self.m_hist = m_hist
+        self.reset()
+
+    def reset(self):
+        self.dX, self.dF = [], []
+        self.x_prev = self.f_prev = None
+
+    def step(self, x, f, w, omega):
+        if self.m_hist > 0 and self.x_prev is not None:
+            self.dX.append(x - self.x_prev)
+            self.dF.append(f - self.f_prev)
+            if len(self.dX) > self.m_hist:
+                self.dX.pop(0)
+                self.dF.pop(0)
+        self.x_prev, self.f_prev = x, f
+        if not self.dX:
+            return omega * f
+        DX = np.array(self.dX).T
+        DF = np.array(self.dF).T
+        A = DF * w[:, None]
+        M = A.T @ A
+        M += np.eye(len(self.dX)) * (1e-10 * np.trace(M) + 1e-300)
+        gamma = np.linalg.solve(M, A.T @ (f * w))
+        return omega * f - (DX + omega * DF) @ gamma
+
+
 class _Branch:
     """The adhesive fixed point on one zeta grid, parametrised by y0 = sigma0 + sigma_a(1).
 
@@ -526,8 +558,7 @@ class _Branch:
         tol = max(PULL_OFF_RESIDUAL * rtol, 1e-13)
         inner = _inner_rtol(rtol)
         x = np.maximum(np.array(x_start, dtype=float), 0.0)
-        dX, dF = [], []
-        x_prev = f_prev = None
+        history = _AndersonHistory(m_hist)
         collapse, a_prev = 0, np.inf
         verdict, res, g1, bar, it = None, np.inf, 0.0, 0.0, 0
         while it < max_iter:
@@ -557,26 +588,10 @@ class _Branch:
                 break
             if collapse:
                 # plain relaxation: sigma_a(1) falls by the factor 1 - omega, never to 0
-                dX, dF, x_prev = [], [], None
+                history.reset()
                 x = x + omega * f
                 continue
-            if m_hist > 0 and x_prev is not None:
-                dX.append(x - x_prev)
-                dF.append(f - f_prev)
-                if len(dX) > m_hist:
-                    dX.pop(0)
-                    dF.pop(0)
-            x_prev, f_prev = x, f
-            if dX:
-                DX = np.array(dX).T
-                DF = np.array(dF).T
-                A = DF * w[:, None]
-                M = A.T @ A
-                M += np.eye(len(dX)) * (1e-10 * np.trace(M) + 1e-300)
-                gamma = np.linalg.solve(M, A.T @ (f * w))
-                step = omega * f - (DX + omega * DF) @ gamma
-            else:
-                step = omega * f
+            step = history.step(x, f, w, omega)
             reach = PULL_OFF_TRUST * np.maximum(x, x[0])
             big = float(np.max(np.abs(step) / np.where(reach > 0.0, reach, np.inf)))
             if big > 1.0:
@@ -604,8 +619,7 @@ class _Branch:
         it_mark = 0
         final = False
         lost = 0
-        dX, dF = [], []
-        x_prev = f_prev = None
+        history = _AndersonHistory(m_hist)
         status = 0
         it = 0
         out = None
@@ -635,8 +649,7 @@ class _Branch:
                 # iterate, forget the history, relax more
                 omega = max(0.5 * omega, 0.1)
                 trust = max(0.5 * trust, 0.05)
-                dX, dF = [], []
-                x_prev = None
+                history.reset()
                 x = np.maximum(x_best + omega * f_best, 0.0)
                 continue
             # the branch is lost when the contact vanishes or sigma_a(1) does
@@ -648,23 +661,7 @@ class _Branch:
                     out = x
                     break
                 final = True        # converged on a loose inner solve: confirm
-            if m_hist > 0 and x_prev is not None:
-                dX.append(x - x_prev)
-                dF.append(f - f_prev)
-                if len(dX) > m_hist:
-                    dX.pop(0)
-                    dF.pop(0)
-            x_prev, f_prev = x, f
-            if dX:
-                DX = np.array(dX).T
-                DF = np.array(dF).T
-                A = DF * w[:, None]
-                M = A.T @ A
-                M += np.eye(len(dX)) * (1e-10 * np.trace(M) + 1e-300)
-                gamma = np.linalg.solve(M, A.T @ (f * w))
-                step = omega * f - (DX + omega * DF) @ gamma
-            else:
-                step = omega * f
+            step = history.step(x, f, w, omega)
             reach = trust * np.maximum(y + x - x[0], y)
             big = float(np.max(np.abs(step) / reach))
             if big > 1.0:
