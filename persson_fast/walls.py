@@ -336,7 +336,6 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
         nr, ndev = ratios(na, nb, nfa, nfb, (nq1, nm, nq3), (fnew[0], nfm, fnew[1]))
         pd = np.concatenate([parent_dev, parent_dev])
         # deviation falling less than x KINK_DROP: a kink (or a jump) in the child
-        pkink = np.concatenate([kink[idx], kink[idx]])
         nkink = (ndev * KINK_DROP > pd) & (pd > 0) & (nr > KINK_FRACTION)
         # a kink-marked interval whose children are both unmarked: the kink is pinned
         n_split = idx.size
