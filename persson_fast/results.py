@@ -145,6 +145,10 @@ class ContactResult:
         distribution over the contact, int sigma P dsigma / A (equal to
         ``mean_contact_pressure`` without adhesion; larger with it, since the contact also
         carries the tension of the detached rims; nan where A = 0). [Pa]
+    theory : str -- the area theory: "persson01" (the original) or a corrected one,
+        "yp08", "wm17", "xu24" (see :mod:`persson_fast.theories`).
+    theory_gamma : float or None -- the gamma the corrected theory ran with (its published
+        default when none was given); None for "persson01". [-]
     """
 
     pressure: np.ndarray
@@ -172,6 +176,8 @@ class ContactResult:
     detached_load_zeta: np.ndarray | None = None
     zeta_error: np.ndarray | None = None
     mean_contact_stress: np.ndarray | None = None
+    theory: str = "persson01"
+    theory_gamma: float | None = None
 
     def __repr__(self) -> str:
         """A few lines (method, shapes, status, ranges), not every array."""
@@ -191,6 +197,8 @@ class ContactResult:
             lines.append(f"  sigma_a(zeta=1) {_span(sa1, 'Pa')}; sticky at {sticky} of {n_p}")
             lines.append(f"  fixed point     iterations max {_largest(self.iterations):.0f}; "
                          f"residual max {_largest(residual):.3g}")
+        if self.theory != "persson01":
+            lines.append(f"  theory          {self.theory} (gamma = {self.theory_gamma:.6g})")
         lines.append(f"  error_estimate  max {_largest(self.error_estimate):.3g}; "
                      f"timings: {_timings(self.timings)}>")
         return "\n".join(lines)
