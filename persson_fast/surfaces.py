@@ -433,6 +433,33 @@ class Surface(abc.ABC):
             f"{name} = {value!r} [{unit}] for this surface (slope_rms = {float(self.slope_rms)!r} [-], "
             f"h_rms = {float(self.h_rms)!r} [m]); e_star is in Pa (E* = 1 GPa is 1e9)")
 
+    def to_csv(self, path, *, points_per_decade=20) -> str:
+        """Write C(q) to a CSV file that :meth:`TabulatedPSD.from_file` reads back.
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            The file; replaced if it exists. It is written to a temporary file in the same
+            folder and renamed onto ``path`` when complete, so an error leaves no partial file.
+        points_per_decade : int, optional
+            Log-spaced points per decade of q for analytic models (default 20), plus the
+            model's breakpoints and the band ends; a :class:`TabulatedPSD` writes its own nodes
+            inside [q0, q1] and the band ends. [-]
+
+        Returns
+        -------
+        str
+            ``path``.
+
+        Notes
+        -----
+        Comment lines give the surface's repr and the grid; the header is ``q [1/m],C [m^4]``;
+        numbers are written with ``repr`` (they read back bit for bit).
+        """
+        from .topography import write_spectrum_csv
+
+        return write_spectrum_csv(self, path, points_per_decade=points_per_decade)
+
     def elastic_energy_full_contact(self, e_star) -> float:
         """Elastic energy per nominal area stored at full contact. [J/m^2]
 
@@ -885,6 +912,128 @@ class TabulatedPSD(Surface):
         factor = math.gamma(1.0 + h) / (math.sqrt(math.pi) * math.gamma(h + 0.5))
         return cls(qa, c1 * factor / qa, q0=q0, q1=q1)
 
+    @classmethod
+    def from_heights(cls, heights, pixel_size, *, q0=None, q1=None, bins_per_decade=10,
+                     window=None, periodic=False, detrend=None, line_scans=None, hurst=None):
+        """Isotropic spectrum of a height map or of line scans given as a numpy array.
+
+        Parameters
+        ----------
+        heights : array_like
+            Heights on a uniform grid, all defined (no NaN): 1-D (one line scan), 2-D (a map,
+            rows along y), or 2-D with ``line_scans=True`` (parallel line scans, one per row,
+            whose 1-D spectra are averaged). [m]
+        pixel_size : float or sequence of float
+            Grid spacing: one value, or (Δy, Δx) for a map. [m]
+        q0 : float, optional
+            Lower band limit, >= 2π/L (L the longer side of the scan); default 2π/L. [1/m]
+        q1 : float, optional
+            Upper band limit, <= π/Δx (Nyquist); default π/Δx, the reliability cut-off
+            ``info['q_reliable']`` of a topography that knows a better one. [1/m]
+        bins_per_decade : int, optional
+            Logarithmic bins per decade of q in which the raw spectrum is averaged (default
+            10). [-]
+        window : {'hann', 'none'}, optional
+            Window against the leakage of non-periodic data; default 'none' for periodic data,
+            'hann' otherwise (normalised to a mean square of 1). [-]
+        periodic : bool, optional
+            Whether the data are periodic (synthetic surfaces); default False. [-]
+        detrend : {'mean', 'plane'}, optional
+            What is removed first: default the mean for periodic data, the least-squares plane
+            (line, for line scans) otherwise. [-]
+        line_scans : bool, optional
+            Treat 2-D heights as line scans; default False (1-D heights are always one). [-]
+        hurst : float, optional
+            H of the 1-D to 2-D conversion of line scans; default fitted to the 1-D spectrum
+            over the band (``info['hurst']``). [-]
+
+        Returns
+        -------
+        TabulatedPSD
+            With ``info``: a dict holding the band limits of the data (``q_lowest`` = 2π/L,
+            ``q_nyquist``, ``q_reliable``), the bins, the window, the data's own rms height
+            (``h_rms_data``) and, for line scans, ``hurst``, ``line_factor`` and the 1-D table
+            ``psd_1d``. [SI]
+
+        Notes
+        -----
+        Persson's C(q) = |h~(q)|²/((2π)² A) for each Fourier mode of a map (h~ = Δx Δy Σ h
+        e^{-iq·x}, A the scan area), averaged in log bins so that every bin keeps the power
+        of its modes: with the default band h_rms is the data's own rms height. Line scans:
+        C_1D = |h~|²/(2π L), then C = C_1D Γ(1+H)/(√π Γ(H+½) q) (see :meth:`from_line_scan`).
+        The module :mod:`persson_fast.topography` gives the derivation and the expected
+        errors.
+        """
+        from .topography import spectrum_from_heights
+
+        q, c, lo, hi, info = spectrum_from_heights(
+            heights, pixel_size, q0=q0, q1=q1, bins_per_decade=bins_per_decade, window=window,
+            periodic=periodic, detrend=detrend, line_scans=line_scans, hurst=hurst)
+        out = cls(q, c, q0=lo, q1=hi)
+        out.info = info
+        return out
+
+    @classmethod
+    def from_topography(cls, topography, *, q0=None, q1=None, bins_per_decade=10,
+                        window=None, detrend=None, line_scans=None, hurst=None):
+        """Isotropic spectrum of a SurfaceTopography map or uniform line scan.
+
+        Parameters
+        ----------
+        topography : SurfaceTopography.Topography or SurfaceTopography.UniformLineScan
+            Measured (or synthetic) surface with a length unit; every pixel defined. Its
+            periodicity sets the default window and detrending, and its short reliability
+            cut-off λ_c, where known, the default q1 = 2π/λ_c.
+        q0, q1, bins_per_decade, window, detrend, line_scans, hurst
+            As for :meth:`from_heights`.
+
+        Returns
+        -------
+        TabulatedPSD
+            As :meth:`from_heights`, ``info`` included.
+
+        Notes
+        -----
+        Needs the optional extra: ``pip install "persson_fast[topography]"``. The heights are
+        converted to m; the spectrum is this package's own (:meth:`from_heights`), equal to
+        SurfaceTopography's ``power_spectrum_from_area`` divided by (2π)² mode by mode.
+        """
+        from .topography import spectrum_from_topography
+
+        q, c, lo, hi, info = spectrum_from_topography(
+            topography, q0=q0, q1=q1, bins_per_decade=bins_per_decade, window=window,
+            detrend=detrend, line_scans=line_scans, hurst=hurst)
+        out = cls(q, c, q0=lo, q1=hi)
+        out.info = info
+        return out
+
+    @classmethod
+    def from_file(cls, path, *, q_unit=None, C_unit=None, q0=None, q1=None):
+        """Spectrum from a plain two-column text file (CSV or whitespace-separated).
+
+        Parameters
+        ----------
+        path : str or os.PathLike
+            File with rows ``q, C`` (Persson's isotropic 2-D C); '#' starts a comment; a header
+            line may name the units, ``q [1/m], C [m^4]`` (as :meth:`Surface.to_csv` writes).
+        q_unit : str, optional
+            Unit of q: '1/m', '1/mm', '1/um', '1/nm'; overrides the header. [-]
+        C_unit : str, optional
+            Unit of C: 'm^4', 'mm^4', 'um^4', 'nm^4'; overrides the header. [-]
+        q0, q1 : float, optional
+            Band limits inside the table; default its ends. [1/m]
+
+        Returns
+        -------
+        TabulatedPSD
+        """
+        from .topography import read_spectrum
+
+        q, c = read_spectrum(path, q_unit=q_unit, C_unit=C_unit)
+        out = cls(q, c, q0=q0, q1=q1)
+        out.info = {"source": os.fspath(path)}
+        return out
+
     def _repr_params(self) -> dict:
         return {"n_nodes": int(self.q_table.size), "q0": self.q0, "q1": self.q1}
 
@@ -892,8 +1041,15 @@ class TabulatedPSD(Surface):
         return (
             f"TabulatedPSD(<{self.q_table.size} nodes in [{float(self.q_table[0])!r}, "
             f"{float(self.q_table[-1])!r}]>, "
-            f"q0={self.q0!r}, q1={self.q1!r})"
+            f"q0={self.q0!r}, q1={self.q1!r}{self._repr_source()})"
         )
+
+    def _repr_source(self) -> str:
+        info = getattr(self, "info", None)
+        if not info or "q_reliable" not in info:
+            return ""
+        return (f", from {info.get('kind', 'data')}: reliable up to "
+                f"q={info['q_reliable']!r}, Nyquist {info['q_nyquist']!r}")
 
     def _psd_inside(self, q):
         qt = self.q_table
