@@ -20,6 +20,7 @@ from .results import ContactResult, DiffusionResult, per_contact_area, summarize
 from .surfaces import check_e_star
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep
+from .theories import check_theory, check_theory_scene, solve_theory_contact
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
 
@@ -436,7 +437,8 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
 
 def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_correction=None,
                   detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None,
-                  parallel=None, adhesion_controls=None) -> ContactResult:
+                  parallel=None, adhesion_controls=None, theory="persson01",
+                  theory_gamma=None) -> ContactResult:
     """Relative real contact area of a rough surface at many nominal pressures.
 
     Parameters
@@ -479,6 +481,17 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     adhesion_controls : dict or None
         Fixed-point controls: ``max_iter`` (100), ``m_hist`` (Anderson depth, 5; 0 = plain
         relaxation), ``omega`` (relaxation, 0.5), ``n_damp`` (2).
+    theory : str
+        The area theory: "persson01" (default, the original; this path is unchanged by the
+        option), or a corrected one, "yp08" (Yang & Persson 2008), "wm17" (Wang & Mueser
+        2017), "xu24" (Xu et al. 2024), see :mod:`persson_fast.theories`. The corrected
+        theories are served for scenes without adhesion (a ValueError otherwise), by the
+        near-closed form (``method`` "auto" or "analytic"; relative accuracy ~1e-12
+        whatever ``rtol``); ``result.theory`` records it.
+    theory_gamma : float or None
+        gamma of the corrected theory; None (default) takes its published default (0.42
+        for yp08 and xu24, 5/9 for wm17), which ``result.theory_gamma`` records. Range
+        (0, 1] ((0.0102, 1] for wm17); must be None for "persson01". [-]
 
     Returns
     -------
@@ -502,6 +515,16 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     rtol = _check_rtol(rtol)
     e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
                                     energy_correction)
+    theory, theory_gamma = check_theory(theory, theory_gamma)
+    if theory != "persson01":
+        check_theory_scene(theory, float(dg))
+        if method not in ("auto", "analytic"):
+            raise ValueError(
+                f"method must be 'auto' or 'analytic' for theory={theory!r} [-] (the corrected "
+                f"theories without walls are a near-closed form, not a grid solve); got "
+                f"method = {method!r}")
+        return solve_theory_contact(surface, _check_pressure(pressure, allow_negative=False),
+                                    _check_zeta(zeta, surface), e, theory, theory_gamma)
     z = _check_zeta(zeta, surface) if (zeta is not None or dg == 0) else None
     if dg > 0:
         res = solve_adhesive_contact(surface, pressure, z, e_star=e, work_of_adhesion=dg,
