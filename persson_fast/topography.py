@@ -147,6 +147,15 @@ def _positive_int(value, name: str, minimum: int = 1) -> int:
 
 # ----------------------------------------------------------------------------------------------
 # the spectrum of every Fourier mode
+def _wavevectors(shape, pixel) -> np.ndarray:
+    """|q| on the FFT grid, q = 2π k/L with integer k (so that the lowest mode is exactly
+    2π/L as computed elsewhere, not an ulp off)."""
+    (ny, nx), (dy, dx) = shape, pixel
+    qy = np.fft.fftfreq(ny, 1.0 / ny) * (2.0 * math.pi / (ny * dy))
+    qx = np.fft.fftfreq(nx, 1.0 / nx) * (2.0 * math.pi / (nx * dx))
+    return np.sqrt(qy[:, None] ** 2 + qx[None, :] ** 2)
+
+
 # ----------------------------------------------------------------------------------------------
 def _window_1d(n: int) -> np.ndarray:
     """Hann window of n points normalised so that the mean of its square is 1."""
@@ -222,7 +231,7 @@ def mode_spectrum(heights, pixel_size, *, line_scans=None, window="none", detren
         length = n * dx
         f = np.fft.fft(hd, axis=-1) * dx
         c1 = (np.abs(f) ** 2).mean(axis=0) / (2.0 * math.pi * length)
-        q = np.abs(2.0 * math.pi * np.fft.fftfreq(n, dx))
+        q = np.abs(np.fft.fftfreq(n, 1.0 / n)) * (2.0 * math.pi / length)
         keep = q > 0
         return q[keep], c1[keep], 2.0 * math.pi / length
     dy, dx = _pixel_sizes(pixel_size, 2)
@@ -235,9 +244,7 @@ def mode_spectrum(heights, pixel_size, *, line_scans=None, window="none", detren
     area = ny * dy * nx * dx
     f = np.fft.fft2(hd) * (dx * dy)
     c2 = np.abs(f) ** 2 / ((2.0 * math.pi) ** 2 * area)
-    qy = 2.0 * math.pi * np.fft.fftfreq(ny, dy)
-    qx = 2.0 * math.pi * np.fft.fftfreq(nx, dx)
-    q = np.sqrt(qy[:, None] ** 2 + qx[None, :] ** 2)
+    q = _wavevectors((ny, nx), (dy, dx))
     keep = q > 0
     return q[keep], c2[keep], (2.0 * math.pi) ** 2 / area
 
@@ -250,6 +257,13 @@ def _log_edges(q0: float, q1: float, bins_per_decade: int) -> np.ndarray:
     edges = q0 * (q1 / q0) ** (np.arange(n + 1) / n)
     edges[0], edges[-1] = q0, q1
     return edges
+
+
+def _bin_index(edges: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Bin of each q: [e_j, e_j+1), a q within 1e-9 (relative) below an edge counted above it
+    (lattice modes and lattice edges agree to rounding only); the last bin is closed."""
+    return np.clip(np.searchsorted(edges, q * (1.0 + 1e-9), side="right") - 1, 0,
+                   edges.size - 2)
 
 
 def _merge_empty(edges: np.ndarray, counts: np.ndarray) -> np.ndarray:
@@ -286,14 +300,30 @@ def _conserving_table(edges, target, k: int):
     c = np.concatenate(([dens[0]], dens, [dens[-1]]))
     owner = np.concatenate(([0], np.arange(lo.size), [lo.size - 1]))
     positive = target > 0
-    for _ in range(200):
+
+    def extend(c):
+        # the band ends continue the power law of the neighbouring segment (flat if either
+        # neighbour is 0, or for a single bin)
+        if c.size > 3 and c[1] > 0 and c[2] > 0:
+            c[0] = c[1] * (c[2] / c[1]) ** (math.log(q[0] / q[1]) / math.log(q[2] / q[1]))
+        else:
+            c[0] = c[1]
+        if c.size > 3 and c[-2] > 0 and c[-3] > 0:
+            c[-1] = c[-2] * (c[-3] / c[-2]) ** (math.log(q[-1] / q[-2]) /
+                                                 math.log(q[-3] / q[-2]))
+        else:
+            c[-1] = c[-2]
+        return c
+
+    c = extend(c)
+    for _ in range(500):
         table = TabulatedPSD(q, c)
         got = table.moment(k, lo, hi)
         ratio = np.ones_like(got)
         ok = positive & (got > 0)
         ratio[ok] = target[ok] / got[ok]
-        c = c * ratio[owner]
-        if np.all(np.abs(ratio - 1.0) < 1e-12):
+        c = extend(c * ratio[owner])
+        if np.all(np.abs(ratio - 1.0) < 1e-13):
             break
     return q, c
 
@@ -335,7 +365,7 @@ def _band(q0, q1, q_lowest, q_nyquist, q_reliable, length_text):
 
 def _hurst_from_line_spectrum(q, c1, cell):
     """Least-squares fit of ln C_1D = a - (1 + 2H) ln q over the bins; H clipped to [0, 1]."""
-    good = c1 > 0
+    good = c1 > 1e-10 * np.max(c1)  # bins holding only round-off stay out of the fit
     if good.sum() < 2:
         return 0.5
     slope = np.polyfit(np.log(q[good]), np.log(c1[good]), 1)[0]
@@ -388,16 +418,25 @@ def spectrum_from_heights(heights, pixel_size, *, q0=None, q1=None, bins_per_dec
     qm, cm, cell = mode_spectrum(h, dx if lines else (dy, dx), line_scans=lines,
                                  window=window, detrend=detrend)
     edges = _log_edges(q0, q1, bins_per_decade)
+    if lines:
+        # the modes of a line scan sit on the lattice k 2π/L: interior edges half-way between
+        # them, so that a bin [k - 1/2, m - 1/2) 2π/L holds exactly the cells of the modes
+        # k .. m-1 and its density is their mean (edges anywhere else would make neighbouring
+        # bins alternate by up to 2x)
+        cell_1d = 2.0 * math.pi / length
+        inner = (np.unique(np.round(edges[1:-1] / cell_1d - 0.5)) + 0.5) * cell_1d
+        inner = inner[(inner > q0 * (1.0 + 1e-9)) & (inner < q1 * (1.0 - 1e-9))]
+        edges = np.concatenate(([q0], inner, [q1]))
     # a mode on a band end belongs to the band (2π/L and fftfreq's k/(n d) differ by an ulp)
     inside = (qm >= q0 * (1.0 - 1e-9)) & (qm <= q1 * (1.0 + 1e-9))
     qi, ci = qm[inside], cm[inside]
-    j = np.clip(np.searchsorted(edges, qi, side="right") - 1, 0, edges.size - 2)
+    j = _bin_index(edges, qi)
     counts = np.bincount(j, minlength=edges.size - 1)
     edges = _merge_empty(edges, counts)
     if edges.size < 2 or qi.size == 0:
         raise ValueError(f"the band [q0, q1] = [{q0!r}, {q1!r}] [1/m] holds no Fourier mode of "
                          f"the data; widen it")
-    j = np.clip(np.searchsorted(edges, qi, side="right") - 1, 0, edges.size - 2)
+    j = _bin_index(edges, qi)
     counts = np.bincount(j, minlength=edges.size - 1)
     power = np.bincount(j, weights=ci * cell, minlength=edges.size - 1)  # mean square per bin
 
@@ -622,20 +661,20 @@ def read_spectrum(path, *, q_unit=None, C_unit=None):
         bad = ~np.isfinite(arr)
         if np.any(bad):
             i = int(np.argmax(bad))
-            raise ValueError(f"{name} must be finite [{unit}]; got {name} = {arr[i]!r} on line "
+            raise ValueError(f"{name} must be finite [{unit}]; got {name} = {float(arr[i])!r} on line "
                              f"{lines[i]} of {path!r}")
     if np.any(q <= 0):
         i = int(np.argmax(q <= 0))
-        raise ValueError(f"q must be > 0 [1/m]; got q = {q[i]!r} on line {lines[i]} of {path!r}")
+        raise ValueError(f"q must be > 0 [1/m]; got q = {float(q[i])!r} on line {lines[i]} of {path!r}")
     if np.any(c < 0):
         i = int(np.argmax(c < 0))
-        raise ValueError(f"C must be >= 0 [m^4]; got C = {c[i]!r} on line {lines[i]} of "
+        raise ValueError(f"C must be >= 0 [m^4]; got C = {float(c[i])!r} on line {lines[i]} of "
                          f"{path!r}")
     step = np.diff(q)
     if np.any(step <= 0):
         i = int(np.argmax(step <= 0))
-        raise ValueError(f"q must be strictly increasing [1/m]; got q = {q[i]!r} on line "
-                         f"{lines[i]} and q = {q[i + 1]!r} on line {lines[i + 1]} of {path!r}")
+        raise ValueError(f"q must be strictly increasing [1/m]; got q = {float(q[i])!r} on line "
+                         f"{lines[i]} and q = {float(q[i + 1])!r} on line {lines[i + 1]} of {path!r}")
     return q, c
 
 
@@ -742,8 +781,8 @@ def _synthesize(psd, shape, pixel_size, *, rng, random_amplitudes, line_scans):
     shape = (int(shape),) if np.ndim(shape) == 0 else tuple(int(n) for n in shape)
     if line_scans or len(shape) == 1:
         n = shape[-1]
-        q = np.abs(2.0 * math.pi * np.fft.fftfreq(n, dx))
         cell = 2.0 * math.pi / (n * dx)
+        q = np.abs(np.fft.fftfreq(n, 1.0 / n)) * cell
         power = np.zeros(n)
         power[q > 0] = np.asarray(psd(q[q > 0]), dtype=np.float64) * cell
         noise = rng.standard_normal(shape if len(shape) == 2 else (1, n))
@@ -754,9 +793,7 @@ def _synthesize(psd, shape, pixel_size, *, rng, random_amplitudes, line_scans):
         h = np.fft.ifft(z, axis=-1).real * n
         return h[0] if len(shape) == 1 else h
     ny, nx = shape
-    qy = 2.0 * math.pi * np.fft.fftfreq(ny, dx)
-    qx = 2.0 * math.pi * np.fft.fftfreq(nx, dx)
-    q = np.sqrt(qy[:, None] ** 2 + qx[None, :] ** 2)
+    q = _wavevectors((ny, nx), (dx, dx))
     cell = (2.0 * math.pi) ** 2 / (ny * nx * dx * dx)
     power = np.zeros_like(q)
     power[q > 0] = np.asarray(psd(q[q > 0]), dtype=np.float64) * cell
