@@ -7,7 +7,8 @@ figure2
     without adhesion and, once adhesion is available, with Delta gamma = 0.06 J/m^2. Writes a CSV
     file and a PNG plot.
 contact
-    A user's own scene (capillary waves or a self-affine spectrum) from flags and/or a TOML file.
+    A user's own scene (capillary waves, a self-affine spectrum, a measured height map or line
+    scan, or a spectrum file) from flags and/or a TOML file.
 info
     Versions, threads and the time to compile (or load from the cache) the kernels.
 
@@ -80,17 +81,27 @@ _COMMANDS = ("figure2", "contact", "info")
 _SURFACE_KEYS = {
     "capillary": ("temperature", "surface_tension", "q_c", "q0", "q1", "density", "gravity"),
     "self-affine": ("hurst", "q0", "q1", "q_r", "h_rms", "slope_rms", "C0"),
+    "topography": ("file", "q0", "q1", "hurst", "bins_per_decade", "unit", "physical_sizes"),
+    "psd": ("file", "q_unit", "C_unit", "q0", "q1"),
 }
+#: [surface] keys whose values are text (file names, units), not numbers
+_TEXT_KEYS = ("file", "unit", "q_unit", "C_unit")
 _REQUIRED = {
     "capillary": ("temperature", "surface_tension", "q_c", "q0", "q1"),
     "self-affine": ("hurst", "q0", "q1"),
+    "topography": ("file",),
+    "psd": ("file",),
 }
 _FLAG_OF = {
     "temperature": "--temperature", "surface_tension": "--surface-tension", "q_c": "--q-c",
     "q0": "--q0", "q1": "--q1", "density": "--density", "gravity": "--gravity",
     "hurst": "--hurst", "q_r": "--q-r", "h_rms": "--h-rms", "slope_rms": "--slope-rms",
-    "C0": "--c0",
+    "C0": "--c0", "file": "--topography/--psd", "bins_per_decade": "--bins-per-decade",
+    "unit": "--height-unit", "physical_sizes": "--physical-size", "q_unit": "--q-unit",
+    "C_unit": "--c-unit",
 }
+#: attribute of the parsed flags for each [surface] key where it is not the key itself
+_ATTR_OF = {"file": None, "physical_sizes": "physical_size", "unit": "height_unit"}
 
 
 #: the columns of figure2.csv and what each holds (the module docstring says the same)
@@ -174,9 +185,10 @@ def build_parser() -> argparse.ArgumentParser:
     )
     ct.add_argument("--config", metavar="FILE.toml",
                     help="TOML file: a [surface] table with model = 'capillary' | 'self-affine' "
-                         "and its parameters; top-level e_star, pressures (or pressure_range = "
+                         "| 'topography' | 'psd' and its parameters (file = 'NAME' for the "
+                         "last two, relative to the TOML file); top-level e_star, pressures (or pressure_range = "
                          "[pmin, pmax, n]), method, rtol, csv")
-    ct.add_argument("--surface", choices=tuple(_SURFACE_KEYS), help="surface model")
+    ct.add_argument("--surface", choices=("capillary", "self-affine"), help="surface model")
     g = ct.add_argument_group("capillary-wave surface")
     g.add_argument("--temperature", type=float, metavar="T", help="temperature [K]")
     g.add_argument("--surface-tension", type=float, metavar="GAMMA", help="surface tension [J/m^2]")
@@ -189,7 +201,24 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--h-rms", type=float, metavar="HRMS", help="rms height [m]")
     g.add_argument("--slope-rms", type=float, metavar="S", help="rms slope [-]")
     g.add_argument("--c0", type=float, metavar="C0", help="plateau of the spectrum [m^4]")
-    g = ct.add_argument_group("both models")
+    g = ct.add_argument_group(
+        "measured surface",
+        "a height map or line scan in any format SurfaceTopography reads (needs the extra: "
+        "pip install \"persson_fast[topography]\"), or a two-column spectrum file q, C "
+        "(Persson's isotropic 2-D C; units from its header 'q [1/m], C [m^4]' or the flags)")
+    g.add_argument("--topography", metavar="FILE",
+                   help="height map or line scan; q0 defaults to 2 pi/L, q1 to pi/pixel "
+                        "(or the file's reliability cut-off)")
+    g.add_argument("--psd", metavar="FILE.csv", help="two-column spectrum file q, C")
+    g.add_argument("--bins-per-decade", type=int, metavar="N",
+                   help="log bins per decade of the measured spectrum (default 10)")
+    g.add_argument("--height-unit", metavar="UNIT",
+                   help="length unit of a topography file that names none (m, mm, um, nm)")
+    g.add_argument("--physical-size", type=float, nargs="+", metavar="S",
+                   help="scan size of a topography file that gives none, in --height-unit")
+    g.add_argument("--q-unit", metavar="UNIT", help="unit of q in --psd (1/m, 1/mm, 1/um, 1/nm)")
+    g.add_argument("--c-unit", metavar="UNIT", help="unit of C in --psd (m^4, um^4, nm^4)")
+    g = ct.add_argument_group("all models")
     g.add_argument("--q0", type=float, metavar="Q0", help="smallest wavevector [1/m]")
     g.add_argument("--q1", type=float, metavar="Q1", help="largest wavevector [1/m]")
     ct.add_argument("--e-star", type=float, metavar="E", help="effective modulus E/(1-nu^2) [Pa]")
@@ -514,11 +543,15 @@ def _resolve_contact(args) -> dict:
         raise CommandError("'surface' in --config must be a table ([surface])")
     surf_cfg = dict(surf_cfg)
 
-    model = args.surface or surf_cfg.pop("model", None)
+    from_flags = [m for m, flag in (("topography", args.topography), ("psd", args.psd)) if flag]
+    if len(from_flags) > 1 or (from_flags and args.surface):
+        raise CommandError("give one of --surface, --topography, --psd")
+    model = (from_flags[0] if from_flags else None) or args.surface or surf_cfg.pop("model", None)
     surf_cfg.pop("model", None)
     if model is None:
-        raise CommandError("no surface model: give --surface {capillary,self-affine} or "
-                           "model = ... in the [surface] table of --config")
+        raise CommandError("no surface model: give --surface {capillary,self-affine}, "
+                           "--topography FILE or --psd FILE, or model = ... in the [surface] "
+                           "table of --config")
     if model not in _SURFACE_KEYS:
         raise CommandError(
             f"surface model must be one of {', '.join(_SURFACE_KEYS)}; got {model!r}")
@@ -527,14 +560,16 @@ def _resolve_contact(args) -> dict:
     if unknown:
         raise CommandError(f"unknown [surface] key(s) for model {model!r}: {', '.join(unknown)}; "
                            f"expected {', '.join(keys)}")
-    params = {k: _number(v, f"surface.{k}") for k, v in surf_cfg.items()}
+    params = {k: _config_value(k, v, args.config) for k, v in surf_cfg.items()}
     for key in keys:
-        value = getattr(args, key.lower())
+        attr = _ATTR_OF.get(key, key.lower())
+        value = getattr(args, attr) if attr else getattr(args, model, None)
         if value is not None:
             params[key] = value
     # flags of the other model are an error, not silently ignored
     other = {k for m, ks in _SURFACE_KEYS.items() if m != model for k in ks} - set(keys)
-    stray = [_FLAG_OF[k] for k in sorted(other) if getattr(args, k.lower()) is not None]
+    stray = [_FLAG_OF[k] for k in sorted(other)
+             if _ATTR_OF.get(k, k.lower()) and getattr(args, _ATTR_OF.get(k, k.lower())) is not None]
     if stray:
         raise CommandError(f"{', '.join(stray)} do(es) not apply to surface model {model!r}")
     missing = [k for k in _REQUIRED[model] if k not in params]
@@ -589,11 +624,40 @@ def _pressure_range(pmin, pmax, n) -> np.ndarray:
     return np.linspace(float(pmin), float(pmax), int(n))
 
 
+def _config_value(key, value, config_path):
+    """A [surface] value: text for file names and units (a relative file name is taken from
+    the folder of the config file), a list of numbers for physical_sizes, else a number."""
+    if key in _TEXT_KEYS:
+        if not isinstance(value, str):
+            raise CommandError(f"surface.{key} must be a string; got {value!r}")
+        if key == "file" and config_path and not os.path.isabs(value):
+            value = os.path.join(os.path.dirname(os.path.abspath(config_path)), value)
+        return value
+    if key == "physical_sizes":
+        raw = value if isinstance(value, list) else [value]
+        return [_number(v, "surface.physical_sizes") for v in raw]
+    return _number(value, f"surface.{key}")
+
+
 def _make_surface(model: str, params: dict):
     import persson_fast as pf
 
     if model == "capillary":
         return pf.CapillaryWaves(**params)
+    if model == "psd":
+        return pf.TabulatedPSD.from_file(params["file"], q_unit=params.get("q_unit"),
+                                         C_unit=params.get("C_unit"), q0=params.get("q0"),
+                                         q1=params.get("q1"))
+    if model == "topography":
+        from .topography import read_topography
+
+        sizes = params.get("physical_sizes")
+        topography = read_topography(params["file"], unit=params.get("unit"),
+                                     physical_sizes=tuple(sizes) if sizes else None)
+        extra = {k: params[k] for k in ("q0", "q1", "hurst") if k in params}
+        if "bins_per_decade" in params:
+            extra["bins_per_decade"] = int(params["bins_per_decade"])
+        return pf.TabulatedPSD.from_topography(topography, **extra)
     return pf.SelfAffine(**params)
 
 
@@ -610,6 +674,12 @@ def _cmd_contact(args) -> int:
     sigma_c = None
     slope = surface.slope_rms()
     print(f"surface: {surface!r}")
+    info = getattr(surface, "info", None)
+    if info and "q_lowest" in info:
+        print(f"measured {info['kind']}: band [{surface.q0:.4g}, {surface.q1:.4g}] 1/m "
+              f"(2 pi/L = {info['q_lowest']:.4g}, reliable up to {info['q_reliable']:.4g}, "
+              f"Nyquist {info['q_nyquist']:.4g}); window {info['window']}"
+              + (f"; H = {info['hurst']:.3g}" if "hurst" in info else ""))
     print(f"h_rms = {surface.h_rms():.4g} m, rms slope = {slope:.4g}, E* = {e_star:.4g} Pa, "
           f"sqrt(G1) = {e_star * slope / (2.0 * math.sqrt(2.0)):.4g} Pa")
     print(f"method: {res.method} (asked {s['method']!r}), rtol = {s['rtol']:g}")

@@ -452,3 +452,90 @@ def test_gitignore_lists_the_default_output_folder():
     if not gitignore.exists():
         pytest.skip("not a checkout")
     assert "persson_fast_out/" in gitignore.read_text().split()
+
+
+# --------------------------------------------------------------------------------------------
+# measured surfaces: --topography FILE, --psd FILE and the same keys in the TOML file
+# --------------------------------------------------------------------------------------------
+def _small_map(tmp_path):
+    """A 64 x 64 synthetic map, 1 um wide, heights in um, as SurfaceTopography writes it."""
+    pytest.importorskip("SurfaceTopography")
+    from SurfaceTopography.Generation import fourier_synthesis
+
+    return fourier_synthesis((64, 64), (1.0, 1.0), hurst=0.8, rms_slope=0.1, unit="um",
+                             rng=np.random.default_rng(1))
+
+
+def _area_of(capsys):
+    rows = [line.split() for line in capsys.readouterr().out.splitlines()]
+    return [float(r[1]) for r in rows if len(r) == 4 and r[-1] == "ok"]
+
+
+@pytest.mark.parametrize("fmt", ["x3p", "gwy", "npy"])
+def test_contact_topography_file_formats(fmt, tmp_path, capsys):
+    import persson_fast as pf
+
+    t = _small_map(tmp_path)
+    path = tmp_path / f"map.{fmt}"
+    extra = []
+    if fmt == "x3p":
+        t.to_x3p(str(path))
+    elif fmt == "gwy":
+        t.to_gwy(str(path))
+    else:  # a bare matrix: the scan size and unit come from the flags
+        np.save(path, np.asarray(t.heights()))
+        extra = ["--physical-size", "1", "1", "--height-unit", "um"]
+    code = cli.main(["contact", "--topography", str(path), "--e-star", "1e9",
+                     "--pressure", "1e6", "1e7", *extra])
+    assert code == 0
+    area = _area_of(capsys)
+    expect = pf.solve_contact(pf.TabulatedPSD.from_topography(t, window="hann",
+                                                              detrend="plane"),
+                              [1e6, 1e7], e_star=1e9).area
+    np.testing.assert_allclose(area, expect, rtol=1e-5)
+
+
+def test_contact_topography_q_band_and_toml(tmp_path, capsys):
+    t = _small_map(tmp_path)
+    t.to_x3p(str(tmp_path / "map.x3p"))
+    (tmp_path / "scene.toml").write_text(
+        'e_star = 1e9\npressures = [1e6]\n[surface]\nmodel = "topography"\n'
+        'file = "map.x3p"\nq0 = 1.3e7\nq1 = 1e8\n')
+    assert cli.main(["contact", "--config", str(tmp_path / "scene.toml")]) == 0
+    out = capsys.readouterr().out
+    assert "band [1.3e+07, 1e+08] 1/m" in out and "reliable up to" in out
+    code = cli.main(["contact", "--topography", str(tmp_path / "map.x3p"), "--e-star", "1e9",
+                     "--pressure", "1e6", "--q0", "1e5"])
+    assert code == 2
+    assert "scan is too small" in capsys.readouterr().err
+
+
+def test_contact_psd_file_flags_and_toml(tmp_path, capsys):
+    import persson_fast as pf
+
+    s = pf.SelfAffine(hurst=0.8, q0=1e6, q1=1e9, slope_rms=0.1)
+    s.to_csv(tmp_path / "psd.csv")
+    assert cli.main(["contact", "--psd", str(tmp_path / "psd.csv"), "--e-star", "1e9",
+                     "--pressure", "1e6"]) == 0
+    a_flag = _area_of(capsys)
+    (tmp_path / "scene.toml").write_text(
+        'e_star = 1e9\npressures = [1e6]\n[surface]\nmodel = "psd"\nfile = "psd.csv"\n')
+    assert cli.main(["contact", "--config", str(tmp_path / "scene.toml")]) == 0
+    a_toml = _area_of(capsys)
+    expect = pf.solve_contact(s, [1e6], e_star=1e9).area
+    np.testing.assert_allclose(a_flag, expect, rtol=1e-3)
+    assert a_toml == a_flag
+    # a spectrum without units in a file: the flags give them
+    (tmp_path / "bare.txt").write_text("1 2e-3\n10 3e-5\n100 1e-7\n")
+    assert cli.main(["contact", "--psd", str(tmp_path / "bare.txt"), "--q-unit", "1/um",
+                     "--c-unit", "um^4", "--e-star", "1e9", "--pressure", "1e6"]) == 0
+    capsys.readouterr()
+    assert cli.main(["contact", "--psd", str(tmp_path / "bare.txt"), "--e-star", "1e9",
+                     "--pressure", "1e6"]) == 2
+    assert "names no units" in capsys.readouterr().err
+
+
+def test_contact_psd_and_surface_flags_conflict(tmp_path, capsys):
+    assert cli.main(["contact", "--psd", "x.csv", "--surface", "capillary", "--e-star", "1e9",
+                     "--pressure", "1e6"]) == 2
+    assert "give one of --surface, --topography, --psd" in capsys.readouterr().err
