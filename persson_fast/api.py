@@ -491,7 +491,7 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     theory_gamma : float or None
         gamma of the corrected theory; None (default) takes its published default (0.42
         for yp08 and xu24, 5/9 for wm17), which ``result.theory_gamma`` records. Range
-        (0, 1] ((0.0102, 1] for wm17); must be None for "persson01". [-]
+        (0, 1] ((0.01019, 1] for wm17); must be None for "persson01". [-]
 
     Returns
     -------

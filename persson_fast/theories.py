@@ -53,7 +53,7 @@ theory, and so is xu24 with gamma = 1.
 
 Valid gamma: S(0) = gamma is the factor of the spread at vanishing contact; gamma <= 0 stops
 it (V would stop growing or shrink, and A would not be defined), so gamma > 0; for wm17 the
-quartic S must stay positive on [0, 1], which needs gamma > ``WM17_GAMMA_MIN`` = 0.0102.
+quartic S must stay positive on [0, 1], which needs gamma > ``WM17_GAMMA_MIN`` = 0.01019.
 gamma <= 1: the corrections were fitted to raise the area of the original theory (gamma = 1
 is the original theory for yp08 and xu24); larger values would lower it, outside what the
 papers define.
@@ -130,7 +130,7 @@ def check_theory(theory, theory_gamma=None) -> tuple[str, float | None]:
         why = ("S(A) = gamma - (2/9) A^2 + (11/9 - gamma) A^4 must stay > 0 for A in [0, 1]"
                if theory == "wm17" else "gamma = S(0) > 0 keeps the spread of the stress going")
         raise ValueError(
-            f"theory_gamma must lie in ({lo:.6g}, 1] for theory={theory!r} [-] ({why}; gamma "
+            f"theory_gamma must lie in ({lo:.4g}, 1] for theory={theory!r} [-] ({why}; gamma "
             f"<= 1 is the range the correction is defined for: it raises the area of the "
             f"original theory, gamma = 1 being no correction for yp08 and xu24); got "
             f"theory_gamma = {g!r}")
