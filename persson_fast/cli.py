@@ -206,18 +206,18 @@ def build_parser() -> argparse.ArgumentParser:
         "a height map or line scan in any format SurfaceTopography reads (needs the extra: "
         "pip install \"persson_fast[topography]\"), or a two-column spectrum file q, C "
         "(Persson's isotropic 2-D C; units from its header 'q [1/m], C [m^4]' or the flags)")
-    g.add_argument("--topography", metavar="FILE",
+    g.add_argument("--topography", metavar="MAP",
                    help="height map or line scan; q0 defaults to 2 pi/L, q1 to pi/pixel "
                         "(or the file's reliability cut-off)")
     g.add_argument("--psd", metavar="FILE.csv", help="two-column spectrum file q, C")
-    g.add_argument("--bins-per-decade", type=int, metavar="N",
+    g.add_argument("--bins-per-decade", type=int, metavar="NBINS",
                    help="log bins per decade of the measured spectrum (default 10)")
-    g.add_argument("--height-unit", metavar="UNIT",
+    g.add_argument("--height-unit", metavar="HUNIT",
                    help="length unit of a topography file that names none (m, mm, um, nm)")
-    g.add_argument("--physical-size", type=float, nargs="+", metavar="S",
+    g.add_argument("--physical-size", type=float, nargs="+", metavar="SIZE",
                    help="scan size of a topography file that gives none, in --height-unit")
-    g.add_argument("--q-unit", metavar="UNIT", help="unit of q in --psd (1/m, 1/mm, 1/um, 1/nm)")
-    g.add_argument("--c-unit", metavar="UNIT", help="unit of C in --psd (m^4, um^4, nm^4)")
+    g.add_argument("--q-unit", metavar="QUNIT", help="unit of q in --psd (1/m, 1/mm, 1/um, 1/nm)")
+    g.add_argument("--c-unit", metavar="CUNIT", help="unit of C in --psd (m^4, um^4, nm^4)")
     g = ct.add_argument_group("all models")
     g.add_argument("--q0", type=float, metavar="Q0", help="smallest wavevector [1/m]")
     g.add_argument("--q1", type=float, metavar="Q1", help="largest wavevector [1/m]")
