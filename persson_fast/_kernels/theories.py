@@ -4,8 +4,7 @@ Everything here is dimensionless. With y = p / sqrt(2 Vc) = p / (2 sqrt G) (the 
 the original theory, A = erf(y)) every theory of :mod:`persson_fast.theories` gives the area
 as A = erf(x(y)) with a single function x(y) per theory and gamma. The kernels tabulate
 L(s) = ln x on a uniform grid in s = ln y, with the exact slope dL/ds at each node, and
-interpolate W = L - s = ln(x/y) (bounded, so rounding does not grow with |s|) by cubic
-Hermite polynomials:
+integrate W = L - s = ln(x/y) (bounded, so rounding does not grow with |s|):
 
 * yp08, wm17 (an ODE in the uncorrected variance): dL/ds = S(erf e^L) e^(2 (L - s)), i.e.
   dW/ds = S(erf e^(s + W)) e^(2 W) - 1,
@@ -14,6 +13,10 @@ Hermite polynomials:
 * xu24 (algebraic): x = y / sqrt(gamma + (1 - gamma) erf x), solved at each node by a
   safeguarded Newton iteration; dL/ds = 1 / (1 + (1 - gamma) x erf'(x) / (2 M)),
   M = gamma + (1 - gamma) erf x.
+
+From W the kernels tabulate ln A = ln erf(y e^W) with its exact slope and interpolate it
+by cubic Hermite polynomials: a look-up costs one exp, and the interpolation error of ln A is
+the relative error of A (~4e-13 at the default spacing, 1/512 in ln y).
 
 Below the table (y < e^s_lo, areas below ~1e-8) the small-contact limit is used: x = y r0
 with r0 = e^W at the first node for the ODE theories (relative error ~ x^2 ln x), two
@@ -35,10 +38,10 @@ YP08 = 1
 WM17 = 2
 XU24 = 3
 
-#: table spacing in s = ln y (cubic Hermite interpolation error ~ H^4 / 384 |L''''|)
-TABLE_STEP = 1.0 / 256.0
+#: table spacing in s = ln y (cubic Hermite interpolation of ln A: relative error of A ~4e-13)
+TABLE_STEP = 1.0 / 512.0
 #: Runge-Kutta steps per table interval (yp08, wm17)
-RK_SUBSTEPS = 4
+RK_SUBSTEPS = 2
 #: upper end of the table: y = 6, where erf(x) == 1.0 for every x >= y
 Y_HIGH = 6.0
 #: lower end of the table: y = 1e-8 (areas ~1e-8 and below use the small-contact limit)
@@ -152,35 +155,57 @@ def build_table(code, gamma, s_low, step, substeps, L, D):
 
 
 @njit_serial
-def table_x(code, gamma, s, L, D, s_low, inv_step):
-    """x(y) at s = ln y from the table (cubic Hermite), with the limits outside it."""
-    n = L.size
+def area_table(W, D, s_low, step, LA, DA):
+    """Fill LA[k] = ln A and DA[k] = d ln A / ds from the W table (A = erf(y e^W)).
+
+    d ln A / ds = erf'(x) x (1 + dW/ds) / A. ln A is what the sweep interpolates: one exp per
+    look-up, and its interpolation error is the relative error of A.
+    """
+    n = W.size
+    for k in range(n):
+        x = math.exp(s_low + k * step + W[k])
+        a = math.erf(x)
+        LA[k] = math.log(a)
+        DA[k] = _TWO_OVER_SQRT_PI * math.exp(-x * x) * x * (1.0 + D[k]) / a
+    return OK
+
+
+@njit_serial
+def table_area(code, gamma, s, w0, LA, DA, s_low, inv_step):
+    """A at s = ln y from the ln A table (cubic Hermite), with the limits outside it.
+
+    Parameters
+    ----------
+    code, gamma : the theory and its parameter.
+    s : float -- ln y, y = p / (2 sqrt G). [-]
+    w0 : float -- W = ln(x / y) at the first node (the small-contact ratio). [-]
+    LA, DA : (n,) -- the table of :func:`area_table`.
+    s_low, inv_step : first node and 1 / spacing. [-]
+    """
     t = (s - s_low) * inv_step
+    n = LA.size
     if t >= n - 1:
-        return math.exp(s)                      # y >= 6: the original theory, erf == 1
+        return 1.0                              # y >= 6: x >= 6 and erf x == 1.0
     if t < 0.0:
         y = math.exp(s)
         if code == XU24:                        # two fixed-point steps, relative error ~A^2
             x = y / math.sqrt(gamma)
             for _ in range(2):
                 x = y / math.sqrt(gamma + (1.0 - gamma) * math.erf(x))
-            return x
-        return y * math.exp(L[0])               # x / y constant, relative error ~x^2 ln x
+            return math.erf(x)
+        return math.erf(y * math.exp(w0))       # x / y constant, relative error ~x^2 ln x
     k = int(t)
     u = t - k
     h = 1.0 / inv_step
     u2 = u * u
     u3 = u2 * u
-    h00 = 2.0 * u3 - 3.0 * u2 + 1.0
-    h10 = u3 - 2.0 * u2 + u
-    h01 = -2.0 * u3 + 3.0 * u2
-    h11 = u3 - u2
-    w = h00 * L[k] + h10 * h * D[k] + h01 * L[k + 1] + h11 * h * D[k + 1]
-    return math.exp(s + w)
+    la = ((2.0 * u3 - 3.0 * u2 + 1.0) * LA[k] + (u3 - 2.0 * u2 + u) * h * DA[k]
+          + (3.0 * u2 - 2.0 * u3) * LA[k + 1] + (u3 - u2) * h * DA[k + 1])
+    return math.exp(la)
 
 
 @njit_serial
-def theory_area_sweep(code, gamma, pressure, G, L, D, s_low, inv_step, log_scale, area,
+def theory_area_sweep(code, gamma, pressure, G, w0, LA, DA, s_low, inv_step, log_scale, area,
                       status):
     """A(zeta)/A0 for every pressure and diffusion time, without walls.
 
@@ -189,7 +214,7 @@ def theory_area_sweep(code, gamma, pressure, G, L, D, s_low, inv_step, log_scale
     code, gamma : the theory and its parameter.
     pressure : (n_p,) -- nominal pressures, >= 0 (any unit u). [u]
     G : (n_z,) -- non-decreasing diffusion times, >= 0. [u^2]
-    L, D, s_low, inv_step : the table of :func:`build_table` and 1 / its step.
+    w0, LA, DA, s_low, inv_step : the tables (see :func:`table_area`).
     log_scale : (n_z,) -- scratch, ln(2 sqrt G).
     area : (n_p, n_z) -- output, A/A0. [-]
     status : (n_p,) int64 -- output, 0 ok or NONFINITE.
@@ -202,7 +227,6 @@ def theory_area_sweep(code, gamma, pressure, G, L, D, s_low, inv_step, log_scale
     """
     n_p = pressure.size
     n_z = G.size
-    s_top = s_low + (L.size - 1) / inv_step
     for j in range(n_z):
         log_scale[j] = math.log(2.0 * math.sqrt(G[j])) if G[j] > 0.0 else -math.inf
     for i in range(n_p):
@@ -214,11 +238,7 @@ def theory_area_sweep(code, gamma, pressure, G, L, D, s_low, inv_step, log_scale
             continue
         lp = math.log(p)
         for j in range(n_z):
-            s = lp - log_scale[j]
-            if s >= s_top:
-                area[i, j] = 1.0
-                continue
-            a = math.erf(table_x(code, gamma, s, L, D, s_low, inv_step))
+            a = table_area(code, gamma, lp - log_scale[j], w0, LA, DA, s_low, inv_step)
             if not math.isfinite(a):
                 status[i] = NONFINITE
             area[i, j] = a
@@ -226,13 +246,13 @@ def theory_area_sweep(code, gamma, pressure, G, L, D, s_low, inv_step, log_scale
 
 
 @njit_serial
-def theory_area_one(code, gamma, y, L, D, s_low, inv_step):
+def theory_area_one(code, gamma, y, w0, LA, DA, s_low, inv_step):
     """A = erf(x(y)) at one y = p / (2 sqrt G) >= 0 (inf: A = 1). [-]"""
     if y <= 0.0:
         return 0.0
     if not y < math.inf:
         return 1.0
-    return math.erf(table_x(code, gamma, math.log(y), L, D, s_low, inv_step))
+    return table_area(code, gamma, math.log(y), w0, LA, DA, s_low, inv_step)
 
 
 def table_nodes(step: float = TABLE_STEP) -> tuple[float, int]:
@@ -244,9 +264,18 @@ def table_nodes(step: float = TABLE_STEP) -> tuple[float, int]:
 
 def new_table(code: int, gamma: float, step: float = TABLE_STEP,
               substeps: int = RK_SUBSTEPS):
-    """Allocate and fill a table: (L, D, s_low, inv_step, status)."""
+    """Allocate and fill the tables: (w0, LA, DA, s_low, inv_step, status, W, D).
+
+    ``(w0, LA, DA, s_low, inv_step)`` are the arguments of :func:`table_area` and the sweep.
+    """
     s_low, n = table_nodes(step)
-    L = np.empty(n)
+    W = np.empty(n)
     D = np.empty(n)
-    st = build_table(code, gamma, s_low, step, substeps, L, D)
-    return L, D, s_low, 1.0 / step, st
+    st = build_table(code, gamma, s_low, step, substeps, W, D)
+    LA = np.empty(n)
+    DA = np.empty(n)
+    if st == OK:
+        area_table(W, D, s_low, step, LA, DA)
+        if not (np.all(np.isfinite(LA)) and np.all(np.isfinite(DA))):
+            st = NONFINITE
+    return float(W[0]), LA, DA, s_low, 1.0 / step, st, W, D
