@@ -129,18 +129,20 @@ class ContactResult:
     mean_contact_pressure : (n_p,) -- p_nom A0 / A, the mean stress in the contact by force
         balance, F_N = p_nom A0 carried by the real contact area A (nan where A = 0). [Pa]
     detached_area, detached_load : (n_p,) -- bookkeeping at zeta1. [-], [Pa]
-    error_estimate : (n_p,) -- estimate of the absolute error of ``area``. With adhesion it
-        is an upper estimate: the error of the finer of the two zeta grids (and inner
-        solves) before Richardson extrapolation; measured against converged references the
-        returned, extrapolated area is typically 10-100 times more accurate. [-]
+    error_estimate : (n_p,) -- estimate of the absolute error of ``area``. With adhesion:
+        the zeta-grid error of the returned (Richardson-extrapolated) area from three
+        nested grids, plus the inner diffusion solves' estimate; measured 0.5-10x the error
+        against converged references, 2-5x after a square-root onset of sigma_a (where
+        gamma_eff changes sign). A pressure whose estimate exceeds rtol is solved on finer
+        grids, and flagged (status 15) if the work cap leaves it above. [-]
     method : str, status : (n_p,) int, success : bool, message : str, timings : dict
     elastic_energy : (n_p, n_z) -- U_el(zeta) per nominal area (adhesion only). [J/m^2]
     iterations : (n_p,) int -- fixed-point iterations (adhesion; 0 otherwise).
     residual : (n_p,) -- final fixed-point residual, sup|F(x) - x| / max(|x|, |p|). [-]
     sticky : (n_p,) bool -- gamma_eff(zeta = 1) > 0 (macroscopically sticky).
     load_zeta, detached_load_zeta : (n_p, n_z) -- load in contact and detached load. [Pa]
-    zeta_error : (n_p,) -- adhesion: estimated error of ``area`` from the zeta grid (the
-        difference of the two nested grids / 3); included in ``error_estimate``. [-]
+    zeta_error : (n_p,) -- adhesion: estimated error of ``area`` from the zeta grid (see
+        :func:`persson_fast.adhesion._ladder_estimate`); included in ``error_estimate``. [-]
     mean_contact_stress : (n_p,) -- load / A, the mean of the compressive stress
         distribution over the contact, int sigma P dsigma / A (equal to
         ``mean_contact_pressure`` without adhesion; larger with it, since the contact also

@@ -35,6 +35,15 @@ STALL_ITERATIONS = 10
 #: consecutive iterates mapped to 'no adhesion anywhere' (F(x) = 0) after which the contact
 #: branch counts as lost
 LOST_ITERATIONS = 3
+#: wall samples inserted in a cell of the zeta grid where gamma_eff changes sign (see
+#: :func:`wall_solve`): the crossing point and CROSSING_POINTS - 1 points graded as (k/m)^2
+#: towards it, on which the square-root onset of sigma_a is sampled
+CROSSING_POINTS = 8
+#: in a row with a crossing, a cell whose two node values of sigma_a differ by more than
+#: this factor (min/max below it: the cells after a square-root onset) gets the square root's
+#: shape, ceil((1 - min/max) SQRT_CELL_DENSITY) - 1 inner samples
+SQRT_CELL_RATIO = 0.99
+SQRT_CELL_DENSITY = 40.0
 
 
 @njit_serial
@@ -108,6 +117,124 @@ def detachment_update(area, c, wa, wb, gamma_s, u, g, out_x):
 
 
 @njit_serial
+def _is_crossing(g, G, i):
+    """gamma_eff changes sign across the cell [G_i, G_i+1] (which has positive width)."""
+    return (g[i] > 0.0) != (g[i + 1] > 0.0) and G[i + 1] > G[i]
+
+
+@njit_serial
+def _steep_points(x, G, i):
+    """Number of wall samples inserted inside a cell without a sign change of gamma_eff
+    where sigma_a changes by a large factor (near a square-root onset): 0 where
+    min/max >= SQRT_CELL_RATIO."""
+    lo = min(x[i], x[i + 1])
+    hi = max(x[i], x[i + 1])
+    if not (hi > 0.0) or lo >= SQRT_CELL_RATIO * hi or not (G[i + 1] > G[i]):
+        return 0
+    return int(math.ceil((1.0 - lo / hi) * SQRT_CELL_DENSITY)) - 1
+
+
+@njit_serial
+def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l, err, counts):
+    """The diffusion solve of one fixed-point iterate: the wall -x, linear in G between the
+    nodes, except near a sign change of gamma_eff (``g``, of the last update).
+
+    There sigma_a = c sqrt(max(g, 0)) starts (or ends) as a square root of the distance to
+    the crossing G*, a kink with an infinite slope. A wall linear between the nodes
+    misplaces it by a fraction of the cell, and its chords miss the square root's curvature
+    in the cells after it: the zeta-grid error then depends on where the crossing falls
+    between the nodes and converges erratically (issue 12). So, in a row with a crossing:
+
+    - in the crossing cell (G* from g linear in G) the wall is sampled at G* and at
+      CROSSING_POINTS - 1 points graded as (k/m)^2 away from it, as
+      x_far sqrt(|G - G*| / |G_far - G*|) plus the node value on the zero side faded out
+      linearly (zero at the fixed point);
+    - in a cell whose node values differ by more than the factor SQRT_CELL_RATIO, sigma_a^2
+      (= c^2 g, smooth) is taken linear in G and the wall sampled at points equally spaced
+      in sigma_a, ceil((1 - min/max) SQRT_CELL_DENSITY) - 1 of them.
+
+    Outputs at the nodes; in a row without a crossing this is ``solve_variant`` on the nodes
+    alone.
+    """
+    n = G.shape[0]
+    n_cross = 0
+    for i in range(n - 1):
+        if _is_crossing(g, G, i):
+            n_cross += 1
+    if n_cross == 0:
+        return solve_variant(variant, G, x, sigma0, rtol, np.int64(-1), n_damp, area, load,
+                             det_a, det_l, err, counts)
+    m = CROSSING_POINTS
+    cap = n + n_cross * m
+    for i in range(n - 1):
+        if not _is_crossing(g, G, i):
+            cap += _steep_points(x, G, i)
+    Ga = np.empty(cap)
+    xa = np.empty(cap)
+    node = np.empty(n, dtype=np.int64)
+    j = 0
+    for i in range(n):
+        Ga[j] = G[i]
+        xa[j] = x[i]
+        node[i] = j
+        j += 1
+        if i == n - 1:
+            continue
+        if not _is_crossing(g, G, i):
+            n_in = _steep_points(x, G, i)
+            x0 = x[i]
+            x1 = x[i + 1]
+            den = x1 * x1 - x0 * x0
+            for k in range(1, n_in + 1):
+                xk = x0 + (x1 - x0) * (k / (n_in + 1))
+                gk = G[i] + (G[i + 1] - G[i]) * ((xk * xk - x0 * x0) / den)
+                if not (gk > Ga[j - 1] and gk < G[i + 1]):
+                    continue
+                Ga[j] = gk
+                xa[j] = xk
+                j += 1
+            continue
+        g0 = g[i]
+        g1 = g[i + 1]
+        width = G[i + 1] - G[i]
+        gs = G[i] + width * (g0 / (g0 - g1))
+        rising = g1 > 0.0
+        for k in range(m):
+            if rising:       # zero up to G*, then x_{i+1} sqrt((G - G*)/(G_{i+1} - G*))
+                s = (k / m) ** 2
+                gk = gs + (G[i + 1] - gs) * s
+            else:            # x_i sqrt((G* - G)/(G* - G_i)) down to zero at G*
+                s = ((m - 1 - k) / m) ** 2
+                gk = gs - (gs - G[i]) * s
+            if not (gk > Ga[j - 1] and gk < G[i + 1]):
+                continue
+            lam = (gk - G[i]) / width
+            if rising:
+                far = 1.0 if G[i + 1] - gs <= 0.0 else (gk - gs) / (G[i + 1] - gs)
+                xa[j] = x[i] * (1.0 - lam) + x[i + 1] * math.sqrt(max(far, 0.0))
+            else:
+                far = 0.0 if gs - G[i] <= 0.0 else (gs - gk) / (gs - G[i])
+                xa[j] = x[i] * math.sqrt(max(far, 0.0)) + x[i + 1] * lam
+            Ga[j] = gk
+            j += 1
+    na = j
+    aa = np.empty(na)
+    la = np.empty(na)
+    da = np.empty(na)
+    dl = np.empty(na)
+    ea = np.empty(na)
+    kstat = solve_variant(variant, Ga[:na], xa[:na], sigma0, rtol, np.int64(-1), n_damp, aa, la,
+                          da, dl, ea, counts)
+    for i in range(n):
+        area[i] = aa[node[i]]
+        load[i] = la[node[i]]
+        det_a[i] = da[node[i]]
+        det_l[i] = dl[node[i]]
+        err[i] = ea[node[i]]
+    return kstat
+
+
+@njit_serial
 def _residual_norm(f, x, sigma0):
     num = 0.0
     den = abs(sigma0)
@@ -124,7 +251,7 @@ def _residual_norm(f, x, sigma0):
 @njit_serial
 def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_hist,
                        omega, x_init, out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
-                       out_det_load, out_error):
+                       out_det_load, out_error, onset=True):
     """Self-consistent contact of one nominal pressure (scaled units).
 
     Parameters
@@ -144,6 +271,9 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         rtol, a tenth of the smallest residual so far); the last ones to rtol.
     out_* -- (n_z,) area, sigma_a, gamma_eff/dgamma, U_el/dgamma, load, detached area and
         load, area error estimate.
+    onset : bool -- shape the square-root onset of sigma_a where gamma_eff changes sign
+        (:func:`wall_solve`; default); False: the wall linear between the nodes everywhere
+        (the discretisation the pull-off branch follower uses).
 
     Returns
     -------
@@ -173,6 +303,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     if x_init[0] >= 0.0:
         for i in range(n):
             x[i] = x_init[i]
+            g[i] = 1.0          # no crossing known before the first update
     else:
         detachment_update(ones, c, wa, wb, gamma_s, u, g, x)
     status = st.OK
@@ -196,8 +327,12 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             rtol_it = 0.1 * residual
         if rtol_it < rtol or final_pass:
             rtol_it = rtol
-        kstat = solve_variant(variant, G, x, sigma0, rtol_it, np.int64(-1), n_damp, area, load, det_a,
-                              det_l, err, counts)
+        if onset:
+            kstat = wall_solve(variant, G, x, g, sigma0, rtol_it, n_damp, area, load, det_a,
+                               det_l, err, counts)
+        else:
+            kstat = solve_variant(variant, G, x, sigma0, rtol_it, np.int64(-1), n_damp, area,
+                                  load, det_a, det_l, err, counts)
         if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
             break
@@ -326,13 +461,13 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
 
 def _adhesive_sweep(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
                     omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error, status,
-                    iterations, residual):
+                    iterations, residual, onset):
     """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,)."""
     for k in prange(pressures.shape[0]):
         s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
                                         n_damp, max_iter, m_hist, omega, x_init[k], area[k],
                                         sigma_a[k], g[k], u[k], load[k], det_area[k],
-                                        det_load[k], error[k])
+                                        det_load[k], error[k], onset)
         status[k] = s
         iterations[k] = it
         residual[k] = res
