@@ -76,6 +76,10 @@ __all__ = ["main", "build_parser"]
 SEED_P_MAX = 100e6
 
 _COMMANDS = ("figure2", "contact", "info")
+#: the area theories of ``contact --theory`` (``persson_fast.theories.THEORIES``, spelt out
+#: here so that the parser does not import the compiled theory kernels; a test keeps the two
+#: equal)
+THEORY_NAMES = ("persson01", "yp08", "wm17", "xu24")
 
 #: surface parameters per model: (TOML key, attribute of the parsed flags, constructor keyword)
 _SURFACE_KEYS = {
@@ -230,6 +234,12 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--detachment-prefactor", type=float, metavar="BETA",
                    help="beta of seed Eq. 8 (default 1/sqrt 2)")
     g.add_argument("--pull-off", action="store_true", help="also compute the pull-off stress")
+    g = ct.add_argument_group("area theory")
+    g.add_argument("--theory", choices=THEORY_NAMES,
+                   help="area theory: persson01 (the original, default) or a corrected one "
+                        "(yp08, wm17, xu24; scenes without adhesion)")
+    g.add_argument("--theory-gamma", type=float, metavar="GAMMA",
+                   help="the corrected theory's parameter gamma (default: the published one)")
     pr = ct.add_mutually_exclusive_group()
     pr.add_argument("--pressure", type=float, nargs="+", metavar="P",
                     help="nominal pressures [Pa]; negative (tension, e.g. -0.5e6) needs "
@@ -533,7 +543,8 @@ def _resolve_contact(args) -> dict:
     """Merge the TOML file (if any) and the flags (which win) into one settings dict."""
     cfg = _load_toml(args.config) if args.config else {}
     known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
-                 "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off"}
+                 "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off",
+                 "theory", "theory_gamma"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -613,9 +624,20 @@ def _resolve_contact(args) -> dict:
         if value is not None:
             adhesion[key] = value
     want_pull_off = bool(args.pull_off or cfg.get("pull_off", False))
+    theory = {}
+    name = args.theory or cfg.get("theory")
+    if name is not None:
+        if name not in THEORY_NAMES:
+            raise CommandError(f"theory must be one of {', '.join(THEORY_NAMES)}; got {name!r}")
+        theory["theory"] = name
+    gamma = args.theory_gamma
+    if gamma is None and "theory_gamma" in cfg:
+        gamma = _number(cfg["theory_gamma"], "theory_gamma")
+    if gamma is not None:
+        theory["theory_gamma"] = gamma
     return {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
             "method": method, "rtol": rtol, "csv": csv_path, "adhesion": adhesion,
-            "pull_off": want_pull_off}
+            "pull_off": want_pull_off, "theory": theory}
 
 
 def _pressure_range(pmin, pmax, n) -> np.ndarray:
@@ -669,7 +691,7 @@ def _cmd_contact(args) -> int:
     e_star = s["e_star"]
     t0 = time.perf_counter()
     res = pf.solve_contact(surface, s["pressure"], e_star=e_star, method=s["method"],
-                           rtol=s["rtol"], **s["adhesion"])
+                           rtol=s["rtol"], **s["adhesion"], **s["theory"])
     elapsed = time.perf_counter() - t0
     sigma_c = None
     slope = surface.slope_rms()
@@ -683,6 +705,8 @@ def _cmd_contact(args) -> int:
     print(f"h_rms = {surface.h_rms():.4g} m, rms slope = {slope:.4g}, E* = {e_star:.4g} Pa, "
           f"sqrt(G1) = {e_star * slope / (2.0 * math.sqrt(2.0)):.4g} Pa")
     print(f"method: {res.method} (asked {s['method']!r}), rtol = {s['rtol']:g}")
+    if res.theory != "persson01":
+        print(f"area theory: {res.theory}, gamma = {res.theory_gamma:g}")
     print(f"{'pressure [Pa]':>14}  {'A/A0':>12}  {'mean p_c [Pa]':>13}  status")
     for p, a, mp, st in zip(res.pressure, res.area, res.mean_contact_pressure, res.status):
         mp_s = f"{mp:13.5g}" if np.isfinite(mp) else f"{'-':>13}"

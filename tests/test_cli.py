@@ -19,6 +19,7 @@ import types
 import numpy as np
 import pytest
 
+import persson_fast as pf
 from persson_fast import cli
 
 #: a self-affine scene that is sticky but not in full contact: pull-off about 0.1 MPa
@@ -539,3 +540,53 @@ def test_contact_psd_and_surface_flags_conflict(tmp_path, capsys):
     assert cli.main(["contact", "--psd", "x.csv", "--surface", "capillary", "--e-star", "1e9",
                      "--pressure", "1e6"]) == 2
     assert "give one of --surface, --topography, --psd" in capsys.readouterr().err
+
+
+# --- area theories (--theory, --theory-gamma) ---------------------------------------------
+
+def test_cli_theory_names_match_the_package():
+    from persson_fast import cli, theories
+    assert cli.THEORY_NAMES == theories.THEORIES
+
+
+def test_cli_contact_theory(tmp_path, capsys):
+    from persson_fast import cli
+    out = tmp_path / "t.csv"
+    args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
+            "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e5", "1e6",
+            "--theory", "yp08", "--theory-gamma", "0.45", "--csv", str(out)]
+    assert cli.main(args) == 0
+    text = capsys.readouterr().out
+    assert "area theory: yp08, gamma = 0.45" in text
+    import csv
+    rows = list(csv.DictReader(open(out)))
+    s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    ref = pf.solve_contact(s, [1e5, 1e6], e_star=1e9, theory="yp08", theory_gamma=0.45)
+    assert np.allclose([float(r["area"]) for r in rows], ref.area, rtol=1e-12)
+    base = pf.solve_contact(s, [1e5, 1e6], e_star=1e9)
+    assert np.all(ref.area > base.area)
+
+
+def test_cli_theory_with_adhesion_is_refused(capsys):
+    from persson_fast import cli
+    args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
+            "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e6", "--theory", "wm17",
+            "--work-of-adhesion", "0.05"]
+    rc = cli.main(args)
+    err = capsys.readouterr().err
+    assert rc != 0 and "without adhesion" in err
+
+
+def test_cli_theory_from_config(tmp_path, capsys):
+    from persson_fast import cli
+    cfg = tmp_path / "c.toml"
+    cfg.write_text('e_star = 1e9\npressures = [1e6]\ntheory = "xu24"\n'
+                   '[surface]\nmodel = "self-affine"\nhurst = 0.8\nq0 = 1e4\nq1 = 1e9\n'
+                   'h_rms = 1e-6\n')
+    assert cli.main(["contact", "--config", str(cfg)]) == 0
+    assert "area theory: xu24" in capsys.readouterr().out
+    cfg.write_text('e_star = 1e9\npressures = [1e6]\ntheory = "nope"\n'
+                   '[surface]\nmodel = "self-affine"\nhurst = 0.8\nq0 = 1e4\nq1 = 1e9\n'
+                   'h_rms = 1e-6\n')
+    assert cli.main(["contact", "--config", str(cfg)]) != 0
+    assert "theory must be one of" in capsys.readouterr().err
