@@ -71,6 +71,7 @@ from ._validation import (as_float_array, check_finite, check_nonnegative, check
 from .adhesion import adhesion_zeta
 from .adhesion import pull_off as _pull_off
 from .api import _check_rtol, default_zeta, solve_contact
+from .theories import check_theory, check_theory_scene
 from .methods import METHODS
 from .surfaces import Surface
 
@@ -186,7 +187,7 @@ def _solve_scene(surface, solve_kw, pressure, options):
         try:
             r = solve_contact(surface, pressure[rows], method=options["method"],
                               rtol=options["rtol"], zeta=zeta, parallel=options["parallel"],
-                              **solve_kw)
+                              **options.get("theory", {}), **solve_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
             for name in ("area", "mean_contact_pressure", "error_estimate", "area_zeta",
                          "sigma_a", "gamma_eff"):
@@ -738,7 +739,7 @@ def _open_client(client):
 def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
          detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None, profiles=False,
          pull_off=False, pull_off_rtol=None, client=None, chunks=None, workers=None,
-         progress=None):
+         progress=None, theory="persson01", theory_gamma=None):
     """Contact area over a grid of scenes crossed with nominal pressures.
 
     Parameters
@@ -801,6 +802,12 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         Show a tqdm progress bar: None shows it for scans of more than 50 scenes or longer
         than about 2 s, when stderr is a terminal; True / False force it on / off. A callable
         is called as ``progress(done, total)`` (in scenes) after each scene or chunk.
+
+    theory, theory_gamma : str, float or None
+        The area theory of every solve (as in :func:`~persson_fast.solve_contact`: "persson01",
+        the default, or a corrected one, "yp08", "wm17", "xu24", for scenes without
+        adhesion) and its gamma (None: the published default). Held fixed over the scan and
+        recorded in ``attrs``; to compare theories, scan once per theory. [-]
 
     Returns
     -------
@@ -868,6 +875,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         raise ValueError(f"method must be one of {', '.join(repr(m) for m in METHODS)}; "
                          f"got method = {method!r}")
     rtol = _check_rtol(rtol)
+    theory, theory_gamma = check_theory(theory, theory_gamma)
     pull_off_rtol = rtol if pull_off_rtol is None else _check_rtol(pull_off_rtol, "pull_off_rtol")
     p = _check_pressure(pressure)
     for name, flag in (("profiles", profiles), ("pull_off", pull_off)):
@@ -883,6 +891,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         i = adhesive.index(True)
         raise ValueError(f"method 'analytic' has no closed form with adhesion; the scene "
                          f"{grid.labels[i]} has work_of_adhesion > 0; use method='auto' or 'cn'")
+    if theory != "persson01" and any(adhesive):
+        i = adhesive.index(True)
+        check_theory_scene(theory, grid.scenes[i][2]["work_of_adhesion"])
     profile_zeta = None
     zeta_plain = zeta_adhesive = zeta
     if profiles:
@@ -891,7 +902,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     options = {"method": method, "rtol": rtol, "zeta_plain": zeta_plain,
                "zeta_adhesive": zeta_adhesive, "profile_zeta": profile_zeta,
                "profiles": bool(profiles), "pull_off": bool(pull_off),
-               "pull_off_rtol": pull_off_rtol, "parallel": None}
+               "pull_off_rtol": pull_off_rtol, "parallel": None,
+               "theory": {} if theory == "persson01" else {"theory": theory,
+                                                          "theory_gamma": theory_gamma}}
     if workers is None:
         import numba
 
@@ -923,6 +936,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     wall = time.perf_counter() - t0
     ds = _assemble(xr, grid, p, results, options, profile_zeta,
                    {"surface_model": grid.factory_name, "method": method, "rtol": rtol,
+                    "theory": theory, "theory_gamma": "" if theory_gamma is None else theory_gamma,
                     "pull_off_rtol": pull_off_rtol if pull_off else "",
                     "execution": execution, "wall_time_s": wall,
                     "persson_fast_version": __version__})

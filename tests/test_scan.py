@@ -450,3 +450,27 @@ def test_missing_extra_names_the_extra(monkeypatch):
     with pytest.raises(ModuleNotFoundError, match=r"persson_fast\[scan\]"):
         pf.scan(pf.SelfAffine, {"hurst": [0.7, 0.8], "h_rms": 1e-6, "q0": 1e4, "q1": 1e9},
                 np.array([1e6]), e_star=1e9)
+
+
+# --- the area theory, held fixed over a scan ------------------------------------------------
+
+def test_scan_theory_matches_solve_contact():
+    ds = pf.scan(pf.SelfAffine, {"hurst": [0.5, 0.8], "q0": 1e4, "q1": 1e9, "h_rms": 1e-6},
+                 [1e5, 1e6], e_star=1e9, theory="wm17", workers=1)
+    assert ds.attrs["theory"] == "wm17" and ds.attrs["theory_gamma"] == pytest.approx(5 / 9)
+    for h in (0.5, 0.8):
+        s = pf.SelfAffine(hurst=h, q0=1e4, q1=1e9, h_rms=1e-6)
+        ref = pf.solve_contact(s, [1e5, 1e6], e_star=1e9, theory="wm17")
+        base = pf.solve_contact(s, [1e5, 1e6], e_star=1e9)
+        got = ds.area.sel(hurst=h).values
+        assert np.array_equal(got, ref.area) and np.all(got > base.area)
+
+
+def test_scan_theory_with_adhesion_is_refused():
+    with pytest.raises(ValueError, match="without adhesion"):
+        pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6,
+                                "work_of_adhesion": [0.0, 0.05]}, [1e6], e_star=1e9,
+                theory="yp08")
+    with pytest.raises(ValueError, match="theory must be one of"):
+        pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6}, [1e6],
+                e_star=1e9, theory="yp09")
