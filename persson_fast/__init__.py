@@ -32,6 +32,7 @@ from .surfaces import (
     seed_scene,
 )
 from .scan import ScanWarning, scan
+from .scene import Scene
 from .sweep import warmup
 
 __version__ = "0.1.0"
@@ -68,5 +69,6 @@ __all__ = [
     "solve_contact",
     "solve_diffusion",
     "warmup",
+    "Scene",
     "__version__",
 ]

@@ -26,6 +26,7 @@ from ._kernels.status import NOT_CONVERGED, RTOL_NOT_MET, WALL_JUMP
 from ._validation import as_float_array, check_finite
 from .methods import METHODS, check_serves, choose_auto
 from .results import ContactResult, per_contact_area, summarize_status
+from .scene import DETACHMENT_PREFACTOR
 from .sweep import choose_parallel, is_compiled, prange_guard, run_rows
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "pull_off", "ADHESION_DEFAULTS"]
@@ -483,7 +484,7 @@ class _ZetaLadder:
 
 
 def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
-                           energy_correction=None, detachment_prefactor=2 ** -0.5,
+                           energy_correction=None, detachment_prefactor=DETACHMENT_PREFACTOR,
                            method="auto", rtol=1e-6, parallel=None, controls=None,
                            zeta_given=False, start=None, onset=True) -> ContactResult:
     """Adhesive contact of one scene at many pressures (called by :func:`solve_contact`).
@@ -1202,19 +1203,20 @@ def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, 
     return (float(-hi), float(-lo)), solves
 
 
-def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
-             detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None,
+def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=None,
+             detachment_prefactor=DETACHMENT_PREFACTOR, rtol=1e-6, zeta=None, controls=None,
              full_output=False, bracket=True):
     """Pull-off stress of a nominally flat contact: contact exists for p_nom > -sigma_c. [Pa]
 
     Parameters
     ----------
-    surface : Surface
-        The rough surface.
+    surface : Surface or Scene
+        The rough surface, or a :class:`~persson_fast.Scene` that carries it with the scene's
+        parameters (the keywords below then stay unset).
     e_star : float
-        Effective modulus E* > 0. [Pa]
+        Effective modulus E* > 0 (required with a surface). [Pa]
     work_of_adhesion : float
-        Delta gamma >= 0. [J/m^2]
+        Delta gamma >= 0 (required with a surface). [J/m^2]
     energy_correction, detachment_prefactor
         As in :func:`persson_fast.solve_contact`.
     rtol : float
@@ -1343,6 +1345,18 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     confirmed and warns. Seed scene on a 2-core machine: 0.55 / 1.7 / 8.9 / 18.8 s at rtol
     1e-3 / 1e-4 / 1e-5 / 1e-6, every value within its estimate of the reference.
     """
+    from .scene import Scene, unpack_scene
+
+    if work_of_adhesion is None and not isinstance(surface, Scene):
+        raise ValueError("pull_off: work_of_adhesion (Delta gamma > 0, in J/m^2) is required "
+                         "with a surface (or pass a Scene); got work_of_adhesion = None")
+    surface, kw = unpack_scene(
+        surface, {"e_star": e_star,
+                  "work_of_adhesion": 0.0 if work_of_adhesion is None else work_of_adhesion,
+                  "energy_correction": energy_correction,
+                  "detachment_prefactor": detachment_prefactor}, "pull_off")
+    e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
+    energy_correction, detachment_prefactor = kw["energy_correction"], kw["detachment_prefactor"]
     sigma_c, info, warning = _pull_off(
         surface, e_star=e_star, work_of_adhesion=work_of_adhesion,
         energy_correction=energy_correction, detachment_prefactor=detachment_prefactor,
@@ -1355,13 +1369,13 @@ def pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
 
 
 def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
-              detachment_prefactor=2 ** -0.5, rtol=1e-6, zeta=None, controls=None,
+              detachment_prefactor=DETACHMENT_PREFACTOR, rtol=1e-6, zeta=None, controls=None,
               bracket=False):
     """:func:`pull_off` without its warning: returns (sigma_c [Pa], info, warning), the
     warning's text or None. Thread-safe (no warning filters touched), for callers that
     record ``info["converged"]`` themselves (:func:`persson_fast.api._flag_lost_contact`).
     """
-    from .api import _check_rtol, _check_scene_args, _check_zeta
+    from .scene import _check_rtol, _check_scene_args, _check_zeta
 
     t_start = time.perf_counter()
     rtol = _check_rtol(rtol)

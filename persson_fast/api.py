@@ -7,35 +7,23 @@ import numpy as np
 
 from . import analytic
 from ._kernels.status import GRID_CAP
-from ._validation import (
-    as_float_array,
-    check_finite,
-    check_nondecreasing,
-    check_nonnegative,
-    check_positive,
-)
+from ._validation import as_float_array, check_finite, check_nondecreasing, check_nonnegative
 from .adhesion import solve_adhesive_contact
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
-from .surfaces import check_e_star
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep
 from .theories import check_theory, check_theory_scene, solve_theory_contact
+from .scene import (
+    DETACHMENT_PREFACTOR,
+    _check_rtol,
+    _check_scene_args,
+    _check_zeta,
+    default_zeta,
+    unpack_scene,
+)
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
-
-#: default number of magnifications per decade of the profile grid of solve_contact
-ZETA_PER_DECADE = 8
-
-
-def _check_rtol(rtol, name: str = "rtol") -> float:
-    arr = as_float_array(rtol, name, "-", ndim=(0,))
-    check_finite(arr, name, "-")
-    value = float(arr)
-    if not 1e-12 <= value <= 0.1:
-        raise ValueError(f"{name} must lie in [1e-12, 0.1] [-]; got {name} = {value!r}")
-    return value
-
 
 def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))
@@ -285,111 +273,6 @@ def _analytic_linear(G, rows, p):
     }
 
 
-def default_zeta(surface, per_decade: int = ZETA_PER_DECADE) -> np.ndarray:
-    """Magnifications 1 ... zeta1 log-spaced, with the surface's breakpoints included. [-]"""
-    zeta1 = surface.q1 / surface.q0
-    n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
-    z = np.geomspace(1.0, zeta1, n)
-    bp = np.asarray(surface.breakpoints(), dtype=float) / surface.q0
-    z = np.unique(np.concatenate([z, bp[(bp >= 1.0) & (bp <= zeta1)]]))
-    z[0], z[-1] = 1.0, zeta1
-    return z
-
-
-#: relative distance from zeta1 = q1/q0 within which the last point of a user zeta grid is
-#: taken as zeta1 (and set to it exactly)
-ZETA1_RTOL = 1e-12
-
-
-def _check_zeta(zeta, surface) -> np.ndarray:
-    """A user zeta grid: starts at 1, increasing, and ends at zeta1 = q1/q0.
-
-    ``area`` is A(zeta1)/A0 by definition, and with adhesion the grid is the discretisation
-    of the fixed point, whose Eq. 9 needs the profile up to zeta1: a grid that stops short
-    of zeta1 (or goes beyond it) is refused, not silently extended. A last point within a
-    relative ``ZETA1_RTOL`` of zeta1 is set to zeta1 exactly (``np.logspace`` rounding).
-    """
-    if zeta is None:
-        return default_zeta(surface)
-    z = as_float_array(zeta, "zeta", "-", ndim=(1,))
-    check_finite(z, "zeta", "-")
-    zeta1 = surface.q1 / surface.q0
-    if z.size < 1 or z[0] != 1.0:
-        raise ValueError(f"zeta must start at 1 [-]; got zeta[0] = {z[0].item() if z.size else None!r}")
-    bad = (z < 1.0) | (z > zeta1 * (1 + ZETA1_RTOL))
-    if np.any(bad):
-        i = int(np.argmax(bad))
-        raise ValueError(f"zeta must lie in [1, q1/q0 = {float(zeta1)!r}] [-]; got zeta[{i}] = {z[i].item()!r}")
-    if np.any(np.diff(z) <= 0):
-        i = int(np.argmax(np.diff(z) <= 0))
-        raise ValueError(f"zeta must be increasing [-]; got zeta[{i}] = {z[i].item()!r} >= zeta[{i + 1}] = {z[i + 1].item()!r}")
-    n = z.size
-    if n < 2 or abs(z[-1] - zeta1) > ZETA1_RTOL * zeta1:
-        raise ValueError(
-            f"zeta must end at zeta1 = q1/q0 = {float(zeta1)!r} (within a relative "
-            f"{ZETA1_RTOL:g}) [-]: result.area is A(zeta1)/A0, and with adhesion the grid "
-            f"is that of the fixed point; got zeta[{n - 1}] = {z[-1].item()!r}. Append "
-            f"q1/q0 (np.append(zeta, surface.q1 / surface.q0)) or pass zeta=None")
-    z = z.copy()
-    z[-1] = zeta1
-    return z
-
-
-def _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
-                      energy_correction):
-    """Validate the scene arguments shared by solve_contact and pull_off; return floats.
-
-    Besides each argument's own rule, the scene must stay finite in float64: G(q1) (e_star
-    with the surface) and, with adhesion, the detachment stress scale beta (dgamma E* q1)^(1/2)
-    and U_el(1)/dgamma (work_of_adhesion) -- a non-finite one would come back as a silent A.
-    An e_star below ``E_STAR_WARN_BELOW`` (1e5 Pa) warns: a modulus in GPa where Pa is meant.
-    """
-    e = check_e_star(e_star)
-    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
-    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
-    beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
-    check_positive(beta, "detachment_prefactor", "-")
-    if energy_correction is not None:
-        gs = as_float_array(energy_correction, "energy_correction", "-", ndim=(0,))
-        check_finite(gs, "energy_correction", "-")
-        if not 0.0 <= float(gs) <= 1.0:
-            raise ValueError(
-                f"energy_correction must lie in [0, 1] [-]; got energy_correction = {float(gs)!r}"
-            )
-    for attr in ("q0", "q1", "diffusion_time", "breakpoints"):
-        if not hasattr(surface, attr):
-            raise ValueError(f"surface must be a persson_fast surface model; {type(surface).__name__} has no {attr!r}")
-    dg, beta = float(dg), float(beta)
-    _check_scene_finite(surface, e, dg, beta)
-    return e, dg, beta
-
-
-def _check_scene_finite(surface, e: float, dg: float, beta: float) -> None:
-    """Refuse an e_star / work_of_adhesion for which the scene overflows float64 (see
-    :func:`_check_scene_args`); G(zeta) <= G(q1), sigma_a(zeta) <= its value at q1 and the
-    U_el quadrature weights <= U_el(1)/dgamma, so the full-band values bound the grid's."""
-    with np.errstate(all="ignore"):
-        G1 = float(np.asarray(surface.diffusion_time(surface.q1, e), dtype=float))
-    if not np.isfinite(G1):
-        raise ValueError(f"e_star must keep the diffusion time G(q1) of the surface finite [Pa]; "
-                         f"got e_star = {e!r}, which gives G(q1) = {G1!r} [Pa^2]")
-    if dg == 0.0:
-        return
-    with np.errstate(all="ignore"):
-        c1_squared = beta * beta * dg * e * float(surface.q1)
-        u_per_dg = (0.5 * np.pi * e / dg) * float(surface.moment(2)) if hasattr(
-            surface, "moment") else 0.0
-    for what, value, unit in (
-            ("sigma_a(q1)^2 = (beta^2 work_of_adhesion e_star q1)", c1_squared, "Pa^2"),
-            ("U_el(zeta = 1)/work_of_adhesion = (pi e_star/2) int q^2 C dq/work_of_adhesion",
-             u_per_dg, "-")):
-        if not np.isfinite(value):
-            raise ValueError(
-                f"work_of_adhesion [J/m^2], e_star [Pa] and detachment_prefactor [-] must keep "
-                f"{what} finite; got work_of_adhesion = {dg!r}, e_star = {e!r}, "
-                f"detachment_prefactor = {beta!r}, which give {float(value)!r} [{unit}]")
-
-
 #: tolerance bounds of the pull-off check of separated tensions in solve_contact
 LOST_CONTACT_RTOL = (1e-4, 1e-3)
 
@@ -435,20 +318,24 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     return replace(res, status=status, success=success, message=message)
 
 
-def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_correction=None,
-                  detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None,
+def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
+                  detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None,
                   parallel=None, adhesion_controls=None, theory="persson01",
                   theory_gamma=None) -> ContactResult:
     """Relative real contact area of a rough surface at many nominal pressures.
 
     Parameters
     ----------
-    surface : Surface
-        The roughness (e.g. :class:`CapillaryWaves`, :class:`SelfAffine`, :class:`TabulatedPSD`).
+    surface : Surface or Scene
+        The roughness (e.g. :class:`CapillaryWaves`, :class:`SelfAffine`, :class:`TabulatedPSD`),
+        or a :class:`Scene` that carries the surface and the scene's parameters (then
+        ``e_star``, ``work_of_adhesion``, ``energy_correction`` and ``detachment_prefactor``
+        stay at their defaults; the result is bitwise that of the keyword form).
     pressure : float or array_like, shape (n_p,)
         Nominal pressure p_nom = F_N / A0, >= 0 without adhesion. [Pa]
     e_star : float
-        Effective modulus E* = E / (1 - nu^2) > 0, in Pa (1 GPa is 1e9). Below 1e5 Pa
+        Effective modulus E* = E / (1 - nu^2) > 0, in Pa (1 GPa is 1e9); required unless a
+        Scene is given. Below 1e5 Pa
         (``persson_fast.surfaces.E_STAR_WARN_BELOW``) a UserWarning says so; a value for
         which G(q1) (or, with adhesion, the detachment stress or U_el/Delta gamma)
         overflows float64 raises a ValueError. [Pa]
@@ -510,6 +397,12 @@ def solve_contact(surface, pressure, *, e_star, work_of_adhesion=0.0, energy_cor
     erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the
     diffusion numerically (the same kernel the adhesive problem uses).
     """
+    surface, kw = unpack_scene(surface, {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
+                                         "energy_correction": energy_correction,
+                                         "detachment_prefactor": detachment_prefactor},
+                               "solve_contact")
+    e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
+    energy_correction, detachment_prefactor = kw["energy_correction"], kw["detachment_prefactor"]
     method = check_method(method)
     check_parallel(parallel)
     rtol = _check_rtol(rtol)

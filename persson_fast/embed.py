@@ -69,6 +69,7 @@ from ._kernels import status as _status
 from ._kernels.adhesion import solve_adhesive_one
 from ._kernels.diffusion import solve_one
 from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
+from .scene import DETACHMENT_PREFACTOR
 
 __all__ = ["diffusion_area", "diffusion_solve", "adhesive_scene", "adhesive_area",
            "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
@@ -170,15 +171,28 @@ def diffusion_area(G, sigma_a, sigma0, rtol):
     return a[n - 1], s
 
 
-def adhesive_scene(surface, *, e_star, work_of_adhesion, energy_correction=None,
-                   detachment_prefactor=2 ** -0.5, rtol=1e-6):
+def adhesive_scene(surface, *, e_star=None, work_of_adhesion=None, energy_correction=None,
+                   detachment_prefactor=DETACHMENT_PREFACTOR, rtol=1e-6):
     """The plain-array scene of :func:`adhesive_area` (validated, built once in Python).
+
+    ``surface`` is a Surface (with the keywords) or a :class:`~persson_fast.Scene`.
 
     Returns a tuple (G, c, wa, wb, G_fine, c_fine, wa_fine, wb_fine, gamma_s, scale): the
     scaled kernel inputs on the nested magnification grids of ``adhesion_zeta(surface,
     rtol)``, gamma_s (< 0 for S = 1) and the stress scale [Pa].
     """
-    from .api import _check_rtol, _check_scene_args
+    from .scene import Scene, _check_rtol, _check_scene_args, unpack_scene
+
+    if work_of_adhesion is None and not isinstance(surface, Scene):
+        raise ValueError("adhesive_scene: work_of_adhesion (Delta gamma > 0, in J/m^2) is "
+                         "required with a surface (or pass a Scene); got None")
+    surface, kw = unpack_scene(
+        surface, {"e_star": e_star,
+                  "work_of_adhesion": 0.0 if work_of_adhesion is None else work_of_adhesion,
+                  "energy_correction": energy_correction,
+                  "detachment_prefactor": detachment_prefactor}, "adhesive_scene")
+    e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
+    energy_correction, detachment_prefactor = kw["energy_correction"], kw["detachment_prefactor"]
 
     rtol = _check_rtol(rtol)
     e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,

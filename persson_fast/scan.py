@@ -70,7 +70,8 @@ from ._validation import (as_float_array, check_finite, check_nonnegative, check
                           optional_import)
 from .adhesion import adhesion_zeta
 from .adhesion import pull_off as _pull_off
-from .api import _check_rtol, default_zeta, solve_contact
+from .api import solve_contact
+from .scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, default_zeta, unpack_scene
 from .theories import check_theory, check_theory_scene
 from .methods import METHODS
 from .surfaces import Surface
@@ -85,7 +86,7 @@ _SOLVE_DEFAULTS = {
     "e_star": None,
     "work_of_adhesion": 0.0,
     "energy_correction": None,
-    "detachment_prefactor": 2 ** -0.5,
+    "detachment_prefactor": DETACHMENT_PREFACTOR,
 }
 
 #: units of the parameters of the package's surface models and of the solve, for ``attrs``
@@ -737,18 +738,20 @@ def _open_client(client):
 # the public function
 # ----------------------------------------------------------------------------------------------
 def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
-         detachment_prefactor=2 ** -0.5, method="auto", rtol=1e-6, zeta=None, profiles=False,
+         detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None, profiles=False,
          pull_off=False, pull_off_rtol=None, client=None, chunks=None, workers=None,
          progress=None, theory="persson01", theory_gamma=None):
     """Contact area over a grid of scenes crossed with nominal pressures.
 
     Parameters
     ----------
-    surface : type, callable or Surface
+    surface : type, callable, Surface or Scene
         A surface model class or factory called as ``surface(**surface_parameters)`` for
         each scene (e.g. ``pf.SelfAffine``, ``pf.CapillaryWaves``, a ``functools.partial``
         or any function returning a :class:`~persson_fast.Surface`); or one Surface
-        instance when only solve parameters are scanned.
+        instance when only solve parameters are scanned; or one
+        :class:`~persson_fast.Scene`, whose parameters are then the fixed ones (a solve
+        parameter in ``params`` still makes an axis).
     params : dict of str to scalar or sequence
         The scene parameters. A sequence makes an axis of the result (named by its key, in
         the order of the dict; its values must be distinct); a scalar is held fixed (a scalar
@@ -865,6 +868,16 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     ('hurst', 'h_rms', 'pressure')
     """
     xr = optional_import("xarray", "scan", "pf.scan")
+    if isinstance(surface, Scene):
+        # one scene, only solve parameters (or none) scanned: its values are the fixed ones
+        surface, kw = unpack_scene(surface, {"e_star": e_star,
+                                             "work_of_adhesion": work_of_adhesion,
+                                             "energy_correction": energy_correction,
+                                             "detachment_prefactor": detachment_prefactor},
+                                   "scan")
+        e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
+        energy_correction = kw["energy_correction"]
+        detachment_prefactor = kw["detachment_prefactor"]
 
     from . import __version__
 

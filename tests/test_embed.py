@@ -151,7 +151,7 @@ def test_single_point_G_is_valid_as_in_solve_diffusion():
 
 
 def test_rtol_range_is_the_python_layers():
-    from persson_fast.api import _check_rtol
+    from persson_fast.scene import _check_rtol
 
     for rtol in (embed.RTOL_MIN, embed.RTOL_MAX):
         assert _check_rtol(rtol) == rtol and embed._rtol_ok(rtol)

@@ -1,0 +1,231 @@
+"""The scene: one record of what a contact problem is made of (model layer).
+
+A :class:`Scene` holds the surface, the effective modulus and the optional physics a scene
+may carry (adhesion: work of adhesion, energy correction S, detachment prefactor beta of
+seed Eq. 8), validated once, with one place for each default. :func:`persson_fast.solve_contact`,
+:func:`persson_fast.pull_off` and :func:`persson_fast.scan` take one in place of the keywords.
+The argument checks shared by the entry points (rtol, the scene, the zeta grid) live here too.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
+from .surfaces import check_e_star
+
+__all__ = ["Scene", "DETACHMENT_PREFACTOR", "default_zeta", "ZETA_PER_DECADE"]
+
+#: beta of seed Eq. 8, sigma_a = beta (dgamma_eff E* q)^(1/2): the default 1/sqrt 2 [-]
+DETACHMENT_PREFACTOR = 2 ** -0.5
+#: default number of magnifications per decade of the profile grid of solve_contact
+ZETA_PER_DECADE = 8
+
+
+def _check_rtol(rtol, name: str = "rtol") -> float:
+    arr = as_float_array(rtol, name, "-", ndim=(0,))
+    check_finite(arr, name, "-")
+    value = float(arr)
+    if not 1e-12 <= value <= 0.1:
+        raise ValueError(f"{name} must lie in [1e-12, 0.1] [-]; got {name} = {value!r}")
+    return value
+
+
+def default_zeta(surface, per_decade: int = ZETA_PER_DECADE) -> np.ndarray:
+    """Magnifications 1 ... zeta1 log-spaced, with the surface's breakpoints included. [-]"""
+    zeta1 = surface.q1 / surface.q0
+    n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
+    z = np.geomspace(1.0, zeta1, n)
+    bp = np.asarray(surface.breakpoints(), dtype=float) / surface.q0
+    z = np.unique(np.concatenate([z, bp[(bp >= 1.0) & (bp <= zeta1)]]))
+    z[0], z[-1] = 1.0, zeta1
+    return z
+
+
+#: relative distance from zeta1 = q1/q0 within which the last point of a user zeta grid is
+#: taken as zeta1 (and set to it exactly)
+ZETA1_RTOL = 1e-12
+
+
+def _check_zeta(zeta, surface) -> np.ndarray:
+    """A user zeta grid: starts at 1, increasing, and ends at zeta1 = q1/q0.
+
+    ``area`` is A(zeta1)/A0 by definition, and with adhesion the grid is the discretisation
+    of the fixed point, whose Eq. 9 needs the profile up to zeta1: a grid that stops short
+    of zeta1 (or goes beyond it) is refused, not silently extended. A last point within a
+    relative ``ZETA1_RTOL`` of zeta1 is set to zeta1 exactly (``np.logspace`` rounding).
+    """
+    if zeta is None:
+        return default_zeta(surface)
+    z = as_float_array(zeta, "zeta", "-", ndim=(1,))
+    check_finite(z, "zeta", "-")
+    zeta1 = surface.q1 / surface.q0
+    if z.size < 1 or z[0] != 1.0:
+        raise ValueError(f"zeta must start at 1 [-]; got zeta[0] = {z[0].item() if z.size else None!r}")
+    bad = (z < 1.0) | (z > zeta1 * (1 + ZETA1_RTOL))
+    if np.any(bad):
+        i = int(np.argmax(bad))
+        raise ValueError(f"zeta must lie in [1, q1/q0 = {float(zeta1)!r}] [-]; got zeta[{i}] = {z[i].item()!r}")
+    if np.any(np.diff(z) <= 0):
+        i = int(np.argmax(np.diff(z) <= 0))
+        raise ValueError(f"zeta must be increasing [-]; got zeta[{i}] = {z[i].item()!r} >= zeta[{i + 1}] = {z[i + 1].item()!r}")
+    n = z.size
+    if n < 2 or abs(z[-1] - zeta1) > ZETA1_RTOL * zeta1:
+        raise ValueError(
+            f"zeta must end at zeta1 = q1/q0 = {float(zeta1)!r} (within a relative "
+            f"{ZETA1_RTOL:g}) [-]: result.area is A(zeta1)/A0, and with adhesion the grid "
+            f"is that of the fixed point; got zeta[{n - 1}] = {z[-1].item()!r}. Append "
+            f"q1/q0 (np.append(zeta, surface.q1 / surface.q0)) or pass zeta=None")
+    z = z.copy()
+    z[-1] = zeta1
+    return z
+
+
+def _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
+                      energy_correction):
+    """Validate the scene arguments shared by solve_contact and pull_off; return floats.
+
+    Besides each argument's own rule, the scene must stay finite in float64: G(q1) (e_star
+    with the surface) and, with adhesion, the detachment stress scale beta (dgamma E* q1)^(1/2)
+    and U_el(1)/dgamma (work_of_adhesion) -- a non-finite one would come back as a silent A.
+    An e_star below ``E_STAR_WARN_BELOW`` (1e5 Pa) warns: a modulus in GPa where Pa is meant.
+    """
+    e = check_e_star(e_star)
+    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
+    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
+    beta = as_float_array(detachment_prefactor, "detachment_prefactor", "-", ndim=(0,))
+    check_positive(beta, "detachment_prefactor", "-")
+    if energy_correction is not None:
+        gs = as_float_array(energy_correction, "energy_correction", "-", ndim=(0,))
+        check_finite(gs, "energy_correction", "-")
+        if not 0.0 <= float(gs) <= 1.0:
+            raise ValueError(
+                f"energy_correction must lie in [0, 1] [-]; got energy_correction = {float(gs)!r}"
+            )
+    for attr in ("q0", "q1", "diffusion_time", "breakpoints"):
+        if not hasattr(surface, attr):
+            raise ValueError(f"surface must be a persson_fast surface model; {type(surface).__name__} has no {attr!r}")
+    dg, beta = float(dg), float(beta)
+    _check_scene_finite(surface, e, dg, beta)
+    return e, dg, beta
+
+
+def _check_scene_finite(surface, e: float, dg: float, beta: float) -> None:
+    """Refuse an e_star / work_of_adhesion for which the scene overflows float64 (see
+    :func:`_check_scene_args`); G(zeta) <= G(q1), sigma_a(zeta) <= its value at q1 and the
+    U_el quadrature weights <= U_el(1)/dgamma, so the full-band values bound the grid's."""
+    with np.errstate(all="ignore"):
+        G1 = float(np.asarray(surface.diffusion_time(surface.q1, e), dtype=float))
+    if not np.isfinite(G1):
+        raise ValueError(f"e_star must keep the diffusion time G(q1) of the surface finite [Pa]; "
+                         f"got e_star = {e!r}, which gives G(q1) = {G1!r} [Pa^2]")
+    if dg == 0.0:
+        return
+    with np.errstate(all="ignore"):
+        c1_squared = beta * beta * dg * e * float(surface.q1)
+        u_per_dg = (0.5 * np.pi * e / dg) * float(surface.moment(2)) if hasattr(
+            surface, "moment") else 0.0
+    for what, value, unit in (
+            ("sigma_a(q1)^2 = (beta^2 work_of_adhesion e_star q1)", c1_squared, "Pa^2"),
+            ("U_el(zeta = 1)/work_of_adhesion = (pi e_star/2) int q^2 C dq/work_of_adhesion",
+             u_per_dg, "-")):
+        if not np.isfinite(value):
+            raise ValueError(
+                f"work_of_adhesion [J/m^2], e_star [Pa] and detachment_prefactor [-] must keep "
+                f"{what} finite; got work_of_adhesion = {dg!r}, e_star = {e!r}, "
+                f"detachment_prefactor = {beta!r}, which give {float(value)!r} [{unit}]")
+
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One contact scene: a rough surface pressed against an elastic solid, with adhesion
+    optionally.
+
+    Parameters
+    ----------
+    surface : Surface
+        The roughness (:class:`~persson_fast.SelfAffine`, :class:`~persson_fast.CapillaryWaves`,
+        :class:`~persson_fast.TabulatedPSD`, ...).
+    e_star : float
+        Effective modulus E* = E / (1 - nu^2) > 0. [Pa]
+    work_of_adhesion : float
+        Delta gamma >= 0 (default 0: no adhesion). [J/m^2]
+    energy_correction : float or None
+        gamma_S of S = gamma_S + (1 - gamma_S) P^2, in [0, 1]; None: S = 1. [-]
+    detachment_prefactor : float
+        beta of seed Eq. 8 (default ``DETACHMENT_PREFACTOR`` = 1/sqrt 2). [-]
+    hardness : None
+        The yield wall sigma_Y(zeta); not available in this version (only None is accepted).
+
+    The values are validated on construction (the rules of :func:`persson_fast.solve_contact`,
+    including that the scene stays finite in float64) and stored as floats.
+    ``solve_contact(scene, pressure, ...)`` equals ``solve_contact(scene.surface, pressure,
+    **scene.keywords(), ...)`` bitwise.
+    """
+
+    surface: object
+    e_star: float
+    work_of_adhesion: float = 0.0
+    energy_correction: float | None = None
+    detachment_prefactor: float = DETACHMENT_PREFACTOR
+    hardness: object = None
+
+    def __post_init__(self):
+        if self.hardness is not None:
+            raise ValueError(f"hardness (the yield wall) is not available in this version; "
+                             f"use hardness=None; got hardness = {self.hardness!r}")
+        e, dg, beta = _check_scene_args(self.surface, self.e_star, self.work_of_adhesion,
+                                        self.detachment_prefactor, self.energy_correction)
+        object.__setattr__(self, "e_star", e)
+        object.__setattr__(self, "work_of_adhesion", dg)
+        object.__setattr__(self, "detachment_prefactor", beta)
+        if self.energy_correction is not None:
+            object.__setattr__(self, "energy_correction", float(self.energy_correction))
+
+    @property
+    def adhesive(self) -> bool:
+        """True when the scene has adhesion (work_of_adhesion > 0)."""
+        return self.work_of_adhesion > 0.0
+
+    def keywords(self) -> dict:
+        """The scene as the keywords of :func:`persson_fast.solve_contact` (all but the
+        surface)."""
+        return {"e_star": self.e_star, "work_of_adhesion": self.work_of_adhesion,
+                "energy_correction": self.energy_correction,
+                "detachment_prefactor": self.detachment_prefactor}
+
+
+#: the keyword defaults of the scene arguments in the entry points' signatures
+SCENE_DEFAULTS = {"e_star": None, "work_of_adhesion": 0.0, "energy_correction": None,
+                  "detachment_prefactor": DETACHMENT_PREFACTOR}
+
+
+def unpack_scene(surface, given: dict, where: str):
+    """(surface, scene keywords) from an entry point's first argument and its keywords.
+
+    A :class:`Scene` as first argument carries the scene: keywords that differ from their
+    defaults then raise a ValueError (one record, not two). Otherwise ``surface`` is the
+    surface and ``given`` the keywords; ``e_star`` is required.
+    """
+    if isinstance(surface, Scene):
+        clash = [k for k, v in given.items() if not _is_default(k, v)]
+        if clash:
+            raise ValueError(f"{where}: give the scene's parameters either in the Scene or as "
+                             f"keywords, not both; got a Scene and {', '.join(clash)}")
+        return surface.surface, surface.keywords()
+    if given.get("e_star") is None:
+        raise ValueError(f"{where}: e_star (the effective modulus E* > 0, in Pa) is required "
+                         f"with a surface (or pass a Scene); got e_star = None")
+    return surface, dict(given)
+
+
+def _is_default(key, value) -> bool:
+    default = SCENE_DEFAULTS[key]
+    if default is None:
+        return value is None
+    try:
+        return value == default
+    except Exception:  # noqa: BLE001 -- an array or odd object is not the default
+        return False
