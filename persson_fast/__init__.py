@@ -16,7 +16,8 @@ from .analytic import (
     plastic_area,
 )
 from .adhesion import adhesion_zeta, pull_off
-from .api import default_zeta, solve_contact, solve_diffusion
+from ._version import __version__
+from .api import default_zeta, solve_contact, solve_diffusion, warmup
 from .methods import AUTO_POLICY, METHODS
 from .results import ContactResult, DiffusionResult
 from .surfaces import (
@@ -33,9 +34,7 @@ from .surfaces import (
 )
 from .scan import ScanWarning, scan
 from .scene import Scene
-from .sweep import warmup
 
-__version__ = "0.1.0"
 
 __all__ = [
     "AUTO_POLICY",

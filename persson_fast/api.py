@@ -8,11 +8,11 @@ import numpy as np
 from . import analytic
 from ._kernels.status import GRID_CAP
 from ._validation import as_float_array, check_finite, check_nondecreasing, check_nonnegative
-from .adhesion import solve_adhesive_contact
+from .adhesion import solve_adhesive_contact, warm_adhesion
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
 from .walls import check_wall_callable, sample_wall
-from .sweep import check_parallel, run_sweep
+from .sweep import check_parallel, run_sweep, warm_sweeps
 from .theories import check_theory, check_theory_scene, solve_theory_contact
 from .scene import (
     DETACHMENT_PREFACTOR,
@@ -23,7 +23,22 @@ from .scene import (
     unpack_scene,
 )
 
-__all__ = ["solve_diffusion", "solve_contact", "default_zeta"]
+__all__ = ["solve_diffusion", "solve_contact", "default_zeta", "warmup"]
+
+
+def warmup(prange: bool = False) -> dict:
+    """Compile (or load from the disk cache) the sweep kernels now; return the seconds spent.
+
+    The serial kernels (which the default thread pool also runs) are cached on disk: the first
+    call on a machine compiles them, later processes load them. ``prange=True`` also compiles
+    numba's ``prange`` sweeps (only used with ``parallel="prange"``; not cached on disk, so
+    compiled once per process).
+    """
+    timings = warm_sweeps(prange)
+    t0 = time.perf_counter()
+    warm_adhesion(prange)
+    timings["adhesion"] = time.perf_counter() - t0
+    return timings
 
 def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))

@@ -661,7 +661,7 @@ def _add_note(exc, note):
 
 def _warm_worker():
     """Load the serial kernels on a worker (from numba's disk cache after the first time)."""
-    from . import warmup
+    from .api import warmup
 
     return warmup(False)
 
@@ -879,7 +879,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         energy_correction = kw["energy_correction"]
         detachment_prefactor = kw["detachment_prefactor"]
 
-    from . import __version__
+    from ._version import __version__
 
     solve_keywords = {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
                       "energy_correction": energy_correction,

@@ -294,16 +294,10 @@ def _warm(kernel, lead=(0,), damped=True) -> None:
            np.zeros((1, 3), dtype=np.int64))
 
 
-def warmup(prange: bool = False) -> dict:
-    """Compile (or load from the disk cache) the sweep kernels now; return the seconds spent.
-
-    The serial kernels (which the default thread pool also runs) are cached on disk: the first
-    call on a machine compiles them, later processes load them. ``prange=True`` also compiles
-    numba's ``prange`` sweeps (only used with ``parallel="prange"``; not cached on disk, so
-    compiled once per process).
-    """
-    from .adhesion import warm_adhesion
-
+def warm_sweeps(prange: bool = False) -> dict:
+    """Compile (or load from the disk cache) the diffusion sweep kernels; the seconds spent
+    per kernel (``serial``; ``prange`` too when asked). :func:`persson_fast.warmup` adds the
+    adhesive kernels."""
     timings = {}
     for name, kernel in (("serial", sweep_serial), ("prange", sweep_parallel)):
         if name == "prange" and not prange:
@@ -311,7 +305,4 @@ def warmup(prange: bool = False) -> dict:
         t0 = time.perf_counter()
         _warm(kernel)
         timings[name] = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    warm_adhesion(prange)
-    timings["adhesion"] = time.perf_counter() - t0
     return timings
