@@ -15,7 +15,8 @@ from .analytic import (
     linear_boundary_load,
     plastic_area,
 )
-from .adhesion import adhesion_zeta, pull_off
+from .adhesion import adhesion_zeta
+from .pulloff import pull_off
 from ._version import __version__
 from .api import default_zeta, solve_contact, solve_diffusion, warmup
 from .methods import AUTO_POLICY, METHODS

@@ -303,7 +303,7 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     within its error estimate of sigma_c, where separation cannot be confirmed.
 
     pull_off's own warning (estimate above its rtol) is not issued here: the private
-    :func:`persson_fast.adhesion._pull_off` returns it instead, and its error estimate
+    :func:`persson_fast.pulloff._pull_off` returns it instead, and its error estimate
     already widens the flagged band. No warning filter is touched, so this is safe on the
     worker threads of a scan (``warnings.catch_warnings`` is not thread-safe before
     Python 3.14 and could leave an 'ignore' filter behind for good).
@@ -311,7 +311,7 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     from dataclasses import replace
 
     from ._kernels.status import LOST_CONTACT
-    from .adhesion import _pull_off
+    from .pulloff import _pull_off
 
     sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
     if not np.any(sep):

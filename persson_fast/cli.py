@@ -238,7 +238,7 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--theory", choices=THEORY_NAMES,
                    help="area theory: persson01 (the original, default) or a corrected one "
                         "(yp08, wm17, xu24; scenes without adhesion)")
-    g.add_argument("--theory-gamma", type=float, metavar="GAMMA",
+    g.add_argument("--theory-gamma", type=float, metavar="THEORY_GAMMA",
                    help="the corrected theory's parameter gamma (default: the published one)")
     pr = ct.add_mutually_exclusive_group()
     pr.add_argument("--pressure", type=float, nargs="+", metavar="P",

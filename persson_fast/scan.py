@@ -69,7 +69,7 @@ import numpy as np
 from ._validation import (as_float_array, check_finite, check_nonnegative, check_positive,
                           optional_import)
 from .adhesion import adhesion_zeta
-from .adhesion import pull_off as _pull_off
+from .pulloff import pull_off as _pull_off
 from .api import solve_contact
 from .scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, default_zeta, unpack_scene
 from .theories import check_theory, check_theory_scene
