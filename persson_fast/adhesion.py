@@ -23,7 +23,7 @@ import numpy as np
 from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
 from ._kernels.status import NOT_CONVERGED, RTOL_NOT_MET
 from ._validation import as_float_array, check_finite
-from .methods import METHODS, check_serves, choose_auto
+from .methods import check_serves, choose_auto, variant_of
 from .results import ContactResult, per_contact_area, summarize_status
 from .scene import DETACHMENT_PREFACTOR
 from .sweep import choose_parallel, is_compiled, prange_guard, run_rows
@@ -323,7 +323,7 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     if method == "auto":
         method = choose_auto("adhesion")
     check_serves(method, adhesion=True)
-    variant = int(METHODS[method]["variant"])
+    variant = variant_of(method)
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))
     check_finite(p, "pressure", "Pa")
     p = np.atleast_1d(p).astype(float)

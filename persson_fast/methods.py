@@ -4,9 +4,13 @@ serve, and the ``method="auto"`` policy.
 Every entry says:
 
 * ``family`` -- ``"closed-form"``, ``"grid"`` (the front-fixed similarity grid of
-  :mod:`persson_fast._kernels.diffusion`, ``variant`` selects the time scheme),
-  ``"fixed-grid"`` (a grid attached to the stress axis, the wall off-grid) or ``"integral"``
-  (the Volterra equation, no stress grid);
+  :mod:`persson_fast._kernels.diffusion`), ``"fixed-grid"`` (a grid attached to the stress
+  axis, the wall off-grid) or ``"integral"`` (the Volterra equation, no stress grid);
+* ``sweep`` (compiled methods) -- where its kernels are: (module, base name of the serial
+  and ``prange`` sweeps ``<base>_serial`` / ``<base>_parallel``, the name of the grid
+  variant constant in :mod:`persson_fast._kernels.diffusion` or None, whether the sweep
+  takes ``n_damp``); :func:`sweep_kernels` reads it, so a new method is its kernel file and
+  one entry here;
 * ``order`` -- the theoretical order of convergence in the resolution (node spacing and
   step halved together), measured by ``python -m benchmarks.report``;
 * ``adhesion`` -- whether it can serve the self-consistent fixed point of seed Eqs. 8-9;
@@ -38,18 +42,18 @@ METHODS = {
             "Crank-Nicolson on the front-fixed similarity grid, Rannacher start after wall "
             "jumps, Richardson-extrapolated (h, dt) -> (h/2, dt/2)"
         ),
-        "family": "grid", "variant": 0, "order": 4, "adhesion": True, "jumps": True,
-        "nonlinear": True,
+        "family": "grid", "order": 4, "adhesion": True, "jumps": True, "nonlinear": True,
+        "sweep": ("persson_fast._kernels.sweep", "sweep", "CN", True),
     },
     "cn-plain": {
         "description": "Crank-Nicolson on the front-fixed similarity grid, no extrapolation",
-        "family": "grid", "variant": 1, "order": 2, "adhesion": True, "jumps": True,
-        "nonlinear": True,
+        "family": "grid", "order": 2, "adhesion": True, "jumps": True, "nonlinear": True,
+        "sweep": ("persson_fast._kernels.sweep", "sweep", "CN_PLAIN", True),
     },
     "implicit-euler": {
         "description": "implicit Euler on the front-fixed similarity grid (first order in the step)",
-        "family": "grid", "variant": 2, "order": 1, "adhesion": True, "jumps": True,
-        "nonlinear": True,
+        "family": "grid", "order": 1, "adhesion": True, "jumps": True, "nonlinear": True,
+        "sweep": ("persson_fast._kernels.sweep", "sweep", "IMPLICIT_EULER", True),
     },
     "fixed-grid": {
         "description": (
@@ -58,6 +62,7 @@ METHODS = {
         ),
         "family": "fixed-grid", "order": 2, "adhesion": False, "jumps": False,
         "nonlinear": True,
+        "sweep": ("persson_fast._kernels.fixedgrid", "fixedgrid_sweep", None, True),
     },
     "bnr": {
         "description": (
@@ -67,6 +72,7 @@ METHODS = {
         ),
         "family": "integral", "order": 4, "adhesion": False, "jumps": False,
         "nonlinear": True,
+        "sweep": ("persson_fast._kernels.bnr", "bnr_sweep", None, False),
     },
     "auto": {
         "description": "the cheapest method that meets rtol for the scene (see AUTO_POLICY)",
@@ -84,6 +90,35 @@ AUTO_POLICY = {
     "jumps": ("cn",),
     "adhesion": ("cn",),
 }
+
+
+def sweep_kernels(method: str):
+    """(serial, parallel, leading arguments, takes n_damp) of a compiled method's sweep.
+
+    Read from the method's ``sweep`` entry (module, kernel base name -- the serial and the
+    ``prange`` driver are ``<base>_serial`` and ``<base>_parallel`` --, the name of the grid
+    variant constant in :mod:`persson_fast._kernels.diffusion` or None, and whether the
+    sweep takes ``n_damp``); the kernel module is imported on first use.
+    """
+    import importlib
+
+    entry = METHODS[method].get("sweep")
+    if entry is None:
+        raise ValueError(f"method {method!r} has no compiled sweep")
+    module, base, variant, damped = entry
+    mod = importlib.import_module(module)
+    lead = (variant_of(method),) if variant is not None else ()
+    return getattr(mod, base + "_serial"), getattr(mod, base + "_parallel"), lead, damped
+
+
+def variant_of(method: str) -> int:
+    """The grid variant number of a front-fixed-grid method (its kernel's named constant)."""
+    entry = METHODS[method].get("sweep")
+    if entry is None or entry[2] is None:
+        raise ValueError(f"method {method!r} is not a variant of the front-fixed grid solver")
+    from ._kernels import diffusion
+
+    return int(getattr(diffusion, entry[2]))
 
 
 def check_method(method: str) -> str:

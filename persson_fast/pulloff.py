@@ -15,7 +15,7 @@ import numpy as np
 from ._kernels.adhesion import detachment_update
 from ._kernels.status import RTOL_NOT_MET, WALL_JUMP
 from .adhesion import _controls, _run, solve_adhesive_contact
-from .methods import METHODS, choose_auto
+from .methods import choose_auto, variant_of
 from .results import summarize_status
 from .scene import DETACHMENT_PREFACTOR
 from .zeta_grid import NEAR_ONE_MIN, _scene_arrays, adhesion_zeta, refine_zeta
@@ -848,7 +848,7 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     if not (controls and "max_iter" in controls):
         ctl["max_iter"] = PULL_OFF_MAX_ITER
     gamma_s = -1.0 if energy_correction is None else float(energy_correction)
-    variant = int(METHODS[choose_auto("adhesion")]["variant"])
+    variant = variant_of(choose_auto("adhesion"))
 
     def make(grid):
         return _Branch(surface, grid, e, dg, beta, gamma_s, variant, ctl["n_damp"])

@@ -12,7 +12,7 @@ import time
 import numpy as np
 
 from ._kernels.sweep import sweep_parallel, sweep_serial
-from .methods import METHODS
+from .methods import sweep_kernels
 
 #: below this many pressures one thread does the whole batch: handing rows to the pool costs
 #: about 0.1 ms per call (2-core machine), the work per pressure 0.05-20 ms
@@ -207,20 +207,6 @@ def is_compiled(func) -> bool:
     return len(getattr(func, "signatures", ())) > 0
 
 
-def _kernels_for(method: str):
-    """(serial, parallel, leading arguments, takes n_damp) of a method's sweep kernels."""
-    info = METHODS[method]
-    if info["family"] == "grid":
-        return sweep_serial, sweep_parallel, (int(info["variant"]),), True
-    if info["family"] == "fixed-grid":
-        from ._kernels.fixedgrid import fixedgrid_sweep_parallel, fixedgrid_sweep_serial
-        return fixedgrid_sweep_serial, fixedgrid_sweep_parallel, (), True
-    if info["family"] == "integral":
-        from ._kernels.bnr import bnr_sweep_parallel, bnr_sweep_serial
-        return bnr_sweep_serial, bnr_sweep_parallel, (), False
-    raise ValueError(f"method {method!r} has no compiled sweep")
-
-
 def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, parallel=None):
     """Solve the diffusion for every pressure with a compiled method.
 
@@ -250,7 +236,7 @@ def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, p
     out = {name: np.zeros((n_p, n_t)) for name in names}
     status = np.zeros(n_p, dtype=np.int64)
     counts = np.zeros((n_p, 3), dtype=np.int64)
-    serial, par_kernel, lead, damped = _kernels_for(method)
+    serial, par_kernel, lead, damped = sweep_kernels(method)
     timings = {}
     mode = choose_parallel(parallel, n_p)
     kernel = par_kernel if mode == "prange" else serial

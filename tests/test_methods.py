@@ -141,3 +141,24 @@ def test_mean_contact_pressure_and_stress():
     r0 = pf.solve_contact(s, p[1:] + 1e6, e_star=3e9)
     assert np.array_equal(r0.mean_contact_pressure, r0.mean_contact_stress)
     assert math.isnan(pf.solve_contact(s, 0.0, e_star=3e9).mean_contact_pressure[0])
+
+
+def test_registry_carries_the_kernels():
+    """Every compiled method names its sweep kernels in its entry; the sweep layer has no
+    per-method branch (a new method is its kernel file and one registry entry)."""
+    import inspect
+
+    from persson_fast import methods, sweep
+    from persson_fast._kernels import diffusion
+
+    compiled = [m for m, i in pf.METHODS.items() if i.get("family") not in (None, "closed-form")]
+    assert set(compiled) == {"cn", "cn-plain", "implicit-euler", "fixed-grid", "bnr"}
+    for m in compiled:
+        serial, parallel, lead, damped = methods.sweep_kernels(m)
+        assert callable(serial) and callable(parallel) and isinstance(damped, bool)
+    assert [methods.variant_of(m) for m in ("cn", "cn-plain", "implicit-euler")] == [
+        diffusion.CN, diffusion.CN_PLAIN, diffusion.IMPLICIT_EULER]
+    src = inspect.getsource(sweep)
+    assert '"family"' not in src and "fixedgrid" not in src and "bnr" not in src
+    with pytest.raises(ValueError, match="no compiled sweep"):
+        methods.sweep_kernels("analytic")
