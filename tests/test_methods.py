@@ -162,3 +162,16 @@ def test_registry_carries_the_kernels():
     assert '"family"' not in src and "fixedgrid" not in src and "bnr" not in src
     with pytest.raises(ValueError, match="no compiled sweep"):
         methods.sweep_kernels("analytic")
+
+
+def test_a_new_method_is_one_registry_entry(monkeypatch):
+    """Trial: a method registered by one entry (here naming the fixed-grid kernel module
+    under a new name) is served by solve_diffusion with nothing else edited."""
+    from persson_fast import methods
+
+    entry = dict(METHODS["fixed-grid"], description="trial entry")
+    monkeypatch.setitem(methods.METHODS, "trial-grid", entry)
+    G = np.concatenate([[0.0], np.geomspace(1e-3, 10.0, 12)])
+    a = pf.solve_diffusion(G, [1.0, 2.0], 0.1 + 0.05 * np.sqrt(G), method="trial-grid", rtol=1e-5)
+    b = pf.solve_diffusion(G, [1.0, 2.0], 0.1 + 0.05 * np.sqrt(G), method="fixed-grid", rtol=1e-5)
+    assert a.method == "trial-grid" and np.array_equal(a.area, b.area)
