@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 import persson_fast as pf
 from persson_fast.sweep import run_sweep
-from tolerances import IDENTITY_PER_STEP, ATOL, BOUNDS, IDENTITY, LOAD_CONSERVATION, RTOL
+from tolerances import ATOL, BOUNDS, IDENTITY, LOAD_CONSERVATION, RTOL, rounding_bound
 
 #: every property runs few, cheap examples (the whole file in well under a minute);
 #: database=None: no example database written into the checkout
@@ -96,7 +96,7 @@ def check_books(r, p, rows):
     """A + detached = 1 and load = pressure + detached_load (exact in the scheme: rounding)."""
     assert np.all(np.isfinite(r.area)) and np.all(np.isfinite(r.load))
     # exact per step; each step may add one rounding error, so the bound grows with the steps
-    bound = np.maximum(IDENTITY, IDENTITY_PER_STEP * r.counts[:, 1])[:, None]
+    bound = rounding_bound(r.counts)
     books = np.abs(r.area + r.detached_area - 1)
     assert np.all(books < bound), (np.max(books), r.counts[:, 1])
     scale = np.maximum(p, np.max(np.abs(rows), axis=1))[:, None]
@@ -203,7 +203,7 @@ def test_scale_invariance(scene, log_lam, with_wall, data):
     err = np.abs(r2.area - r1.area) / np.maximum(np.abs(r1.area), 1e-300)
     err = np.where(r1.area == r2.area, 0.0, err)
     # the scaled inputs round differently; the difference accumulates with the steps taken
-    bound = np.maximum(IDENTITY, IDENTITY_PER_STEP * r1.counts[:, 1])[:, None]
+    bound = rounding_bound(r1.counts)
     assert np.all(err < bound), (np.max(err), r1.counts[:, 1])
 
 
