@@ -11,6 +11,9 @@ Every entry says:
   variant constant in :mod:`persson_fast._kernels.diffusion` or None, whether the sweep
   takes ``n_damp``); :func:`sweep_kernels` reads it, so a new method is its kernel file and
   one entry here;
+* ``controls_error`` (default True) -- False for a method whose kernel does not refine until
+  its estimate meets rtol: the sweep layer then flags (status 15) a result whose estimate
+  exceeds rtol at a returned G;
 * ``order`` -- the theoretical order of convergence in the resolution (node spacing and
   step halved together), measured by ``python -m benchmarks.report``;
 * ``adhesion`` -- whether it can serve the self-consistent fixed point of seed Eqs. 8-9;
@@ -63,6 +66,7 @@ METHODS = {
         "family": "fixed-grid", "order": 2, "adhesion": False, "jumps": False,
         "nonlinear": True,
         "sweep": ("persson_fast._kernels.fixedgrid", "fixedgrid_sweep", None, True),
+        "controls_error": False,
     },
     "bnr": {
         "description": (

@@ -12,7 +12,11 @@ import time
 import numpy as np
 
 from ._kernels.sweep import sweep_parallel, sweep_serial
-from .methods import sweep_kernels
+from ._kernels.status import RTOL_NOT_MET
+from .methods import METHODS, sweep_kernels
+
+#: absolute part of the accuracy contract |dA| <= rtol A + CONTRACT_ATOL [-]
+CONTRACT_ATOL = 1e-12
 
 #: below this many pressures one thread does the whole batch: handing rows to the pool costs
 #: about 0.1 ms per call (2-core machine), the work per pressure 0.05-20 ms
@@ -256,6 +260,12 @@ def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, p
     timings["solve"] = time.perf_counter() - t0
     out["load"] *= scale
     out["detached_load"] *= scale
+    if level < 0 and not METHODS[method].get("controls_error", True):
+        # a method without its own a-posteriori control: a result whose error estimate
+        # exceeds rtol at a returned G says so (the contract: within rtol, or flagged)
+        over = np.any(out["error_estimate"] > rtol * np.abs(out["area"]) + CONTRACT_ATOL,
+                      axis=1)
+        status[(status == 0) & over] = RTOL_NOT_MET
     out["status"] = status
     out["counts"] = counts
     return out, timings

@@ -15,6 +15,8 @@ import persson_fast as pf
 ATOL = 1e-12
 RTOLS = (1e-3, 1e-4, 1e-6, 1e-8)
 GRID_METHODS = ("cn", "cn-plain", "implicit-euler")
+#: every compiled method that solves a prescribed wall (the within-rtol-or-flagged matrix)
+ALL_METHODS = GRID_METHODS + ("fixed-grid", "bnr")
 #: the error estimate of "cn" against the actual error on exact cases, at the returned G
 EST_LO, EST_HI = 0.5, 10.0
 #: actual errors below this (relative) are rounding: no ratio is judged there
@@ -49,7 +51,7 @@ CASES = ("images", "wall-receding", "wall-approaching", "kinked-wall", "fast-wal
 
 @pytest.mark.parametrize("rtol", RTOLS)
 @pytest.mark.parametrize("case", CASES)
-@pytest.mark.parametrize("method", GRID_METHODS)
+@pytest.mark.parametrize("method", ALL_METHODS)
 def test_within_rtol_or_flagged(method, case, rtol):
     G, sigma0, sa, ref, _ = _case(case)
     r = pf.solve_diffusion(G, sigma0, sa, method=method, rtol=rtol)
