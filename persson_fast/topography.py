@@ -704,8 +704,8 @@ def write_spectrum_csv(surface, path, *, points_per_decade=20) -> str:
         raise IsADirectoryError(f"cannot write {path!r}: it is a folder")
     how = ("the table's own nodes inside [q0, q1]" if hasattr(surface, "q_table") else
            f"{ppd} points per decade, log-spaced, plus the model's breakpoints")
-    lines = [f"# persson_fast spectrum C(q), Persson's isotropic 2-D convention: "
-             f"h_rms^2 = 2 pi int q C dq",
+    lines = ["# persson_fast spectrum C(q), Persson's isotropic 2-D convention: "
+             "h_rms^2 = 2 pi int q C dq",
              f"# surface: {surface!r}",
              f"# q0 = {surface.q0!r} 1/m, q1 = {surface.q1!r} 1/m; tabulated on {q.size} "
              f"points: {how}",
