@@ -181,16 +181,10 @@ def adhesive_scene(surface, *, e_star=None, work_of_adhesion=None, energy_correc
     scaled kernel inputs on the nested magnification grids of ``adhesion_zeta(surface,
     rtol)``, gamma_s (< 0 for S = 1) and the stress scale [Pa].
     """
-    from .scene import Scene, _check_rtol, _check_scene_args, unpack_scene
+    from .scene import _check_rtol, _check_scene_args, unpack_adhesive_scene
 
-    if work_of_adhesion is None and not isinstance(surface, Scene):
-        raise ValueError("adhesive_scene: work_of_adhesion (Delta gamma > 0, in J/m^2) is "
-                         "required with a surface (or pass a Scene); got None")
-    surface, kw = unpack_scene(
-        surface, {"e_star": e_star,
-                  "work_of_adhesion": 0.0 if work_of_adhesion is None else work_of_adhesion,
-                  "energy_correction": energy_correction,
-                  "detachment_prefactor": detachment_prefactor}, "adhesive_scene")
+    surface, kw = unpack_adhesive_scene(surface, e_star, work_of_adhesion, energy_correction,
+                                        detachment_prefactor, "adhesive_scene")
     e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
     energy_correction, detachment_prefactor = kw["energy_correction"], kw["detachment_prefactor"]
 

@@ -796,16 +796,10 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
     confirmed and warns. Seed scene on a 2-core machine: 0.55 / 1.7 / 8.9 / 18.8 s at rtol
     1e-3 / 1e-4 / 1e-5 / 1e-6, every value within its estimate of the reference.
     """
-    from .scene import Scene, unpack_scene
+    from .scene import unpack_adhesive_scene
 
-    if work_of_adhesion is None and not isinstance(surface, Scene):
-        raise ValueError("pull_off: work_of_adhesion (Delta gamma > 0, in J/m^2) is required "
-                         "with a surface (or pass a Scene); got work_of_adhesion = None")
-    surface, kw = unpack_scene(
-        surface, {"e_star": e_star,
-                  "work_of_adhesion": 0.0 if work_of_adhesion is None else work_of_adhesion,
-                  "energy_correction": energy_correction,
-                  "detachment_prefactor": detachment_prefactor}, "pull_off")
+    surface, kw = unpack_adhesive_scene(surface, e_star, work_of_adhesion, energy_correction,
+                                        detachment_prefactor, "pull_off")
     e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
     energy_correction, detachment_prefactor = kw["energy_correction"], kw["detachment_prefactor"]
     sigma_c, info, warning = _pull_off(

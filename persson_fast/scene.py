@@ -221,6 +221,20 @@ def unpack_scene(surface, given: dict, where: str):
     return surface, dict(given)
 
 
+def unpack_adhesive_scene(surface, e_star, work_of_adhesion, energy_correction,
+                          detachment_prefactor, where: str):
+    """:func:`unpack_scene` for an entry point that needs adhesion (``work_of_adhesion``
+    defaults to None there and is required with a surface); returns (surface, keywords)."""
+    if work_of_adhesion is None and not isinstance(surface, Scene):
+        raise ValueError(f"{where}: work_of_adhesion (Delta gamma > 0, in J/m^2) is required "
+                         f"with a surface (or pass a Scene); got work_of_adhesion = None")
+    return unpack_scene(
+        surface, {"e_star": e_star,
+                  "work_of_adhesion": 0.0 if work_of_adhesion is None else work_of_adhesion,
+                  "energy_correction": energy_correction,
+                  "detachment_prefactor": detachment_prefactor}, where)
+
+
 def _is_default(key, value) -> bool:
     default = SCENE_DEFAULTS[key]
     if default is None:
