@@ -275,7 +275,6 @@ class _ZetaLadder:
         est, _, area = self._end_estimate()
         self.status = np.array([self._status_of(r) for r in range(self.n_p)], dtype=np.int64)
         self.status[(self.status == 0) & ((est > rtol * area + 1e-12) | self.unresolved)] = RTOL_NOT_MET
-        self.est = est
 
     def profiles(self):
         """Profiles on the level-1 nodes: the extrapolation of the two finest levels of each
