@@ -35,6 +35,8 @@ from .surfaces import (
 )
 from .scan import ScanWarning, scan
 from .scene import Scene
+from .separation import (SeparationResult, decay_length, pressure_at_separation,
+                         solve_separation)
 
 
 __all__ = [
@@ -70,5 +72,9 @@ __all__ = [
     "solve_diffusion",
     "warmup",
     "Scene",
+    "SeparationResult",
+    "decay_length",
+    "pressure_at_separation",
+    "solve_separation",
     "__version__",
 ]

@@ -338,7 +338,7 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
             gamma_eff=rows, load=none, mean_contact_pressure=none, mean_contact_stress=none,
             detached_area=none, detached_load=none, error_estimate=none, method=method,
             status=np.zeros(0, dtype=np.int64), success=True, message="ok", timings={},
-            elastic_energy=rows, iterations=np.zeros(0, dtype=np.int64), residual=none,
+            elastic_energy_zeta=rows, iterations=np.zeros(0, dtype=np.int64), residual=none,
             sticky=np.zeros(0, dtype=bool), load_zeta=rows, detached_load_zeta=rows,
             zeta_error=none)
     gamma_s = -1.0 if energy_correction is None else float(energy_correction)
@@ -386,7 +386,7 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
         mean_contact_stress=per_contact_area(load[:, -1], area),
         detached_area=det_a[:, -1].copy(), detached_load=det_l[:, -1].copy(),
         error_estimate=err[:, -1].copy(), method=method, status=status, success=success,
-        message=message, timings=timings, elastic_energy=u * work_of_adhesion,
+        message=message, timings=timings, elastic_energy_zeta=u * work_of_adhesion,
         iterations=iterations, residual=residual, sticky=g[:, 0] > 0,
         load_zeta=load, detached_load_zeta=det_l, zeta_error=zeta_err,
     )

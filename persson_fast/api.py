@@ -1,7 +1,9 @@
 """Public entry points: validate, pick a method, call the sweep, wrap the result."""
 from __future__ import annotations
 
+import functools
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -11,6 +13,7 @@ from ._validation import as_float_array, check_finite, check_nondecreasing, chec
 from .adhesion import solve_adhesive_contact, warm_adhesion
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
+from .separation import ADHESION_REFUSED, contact_fields
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep, warm_sweeps
 from .theories import check_theory, check_theory_scene, solve_theory_contact
@@ -308,7 +311,6 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     worker threads of a scan (``warnings.catch_warnings`` is not thread-safe before
     Python 3.14 and could leave an 'ignore' filter behind for good).
     """
-    from dataclasses import replace
 
     from ._kernels.status import LOST_CONTACT
     from .pulloff import _pull_off
@@ -431,8 +433,11 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
                 f"method must be 'auto' or 'analytic' for theory={theory!r} [-] (the corrected "
                 f"theories without walls are a near-closed form, not a grid solve); got "
                 f"method = {method!r}")
-        return solve_theory_contact(surface, _check_pressure(pressure, allow_negative=False),
-                                    _check_zeta(zeta, surface), e, theory, theory_gamma)
+        res = solve_theory_contact(surface, _check_pressure(pressure, allow_negative=False),
+                                   _check_zeta(zeta, surface), e, theory, theory_gamma)
+        return replace(res, separation_source=(
+            f"separation, stiffness and elastic_energy are derived for the original theory "
+            f"(theory='persson01') only; got theory = {theory!r}"))
     z = _check_zeta(zeta, surface) if (zeta is not None or dg == 0) else None
     if dg > 0:
         res = solve_adhesive_contact(surface, pressure, z, e_star=e, work_of_adhesion=dg,
@@ -440,7 +445,9 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
                                      detachment_prefactor=float(beta), method=method,
                                      rtol=rtol, parallel=parallel, controls=adhesion_controls,
                                      zeta_given=zeta is not None)
-        return _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol)
+        res = _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol)
+        return replace(res, separation_source=ADHESION_REFUSED.format(
+            where="solve_contact", dg=float(dg)))
     p = _check_pressure(pressure, allow_negative=False)
     G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
     G[0] = 0.0
@@ -473,4 +480,5 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         mean_contact_stress=per_contact_area(load, area), detached_area=det_a, detached_load=det_l,
         error_estimate=err, method=use, status=status, success=success, message=message,
         timings=timings,
+        separation_source=functools.partial(contact_fields, surface, e, energy_correction, parallel),
     )

@@ -136,7 +136,16 @@ class ContactResult:
         gamma_eff changes sign). A pressure whose estimate exceeds rtol is solved on finer
         grids, and flagged (status 15) if the work cap leaves it above. [-]
     method : str, status : (n_p,) int, success : bool, message : str, timings : dict
-    elastic_energy : (n_p, n_z) -- U_el(zeta) per nominal area (adhesion only). [J/m^2]
+    elastic_energy_zeta : (n_p, n_z) -- U_el(zeta) per nominal area (adhesion only). [J/m^2]
+    separation : (n_p,) -- mean interfacial separation u(p) (no adhesion; computed on first
+        access by the closed form of :mod:`persson_fast.separation`, ~3 us per pressure, and
+        kept; inf at p = 0). Adhesive scenes and the corrected theories raise a ValueError
+        that says why. [m]
+    stiffness : (n_p,) -- contact stiffness K = -dp/du per nominal area (as ``separation``;
+        0 at p = 0). [Pa/m]
+    elastic_energy : (n_p,) -- stored elastic energy U_el per nominal area at zeta = 1: the
+        closed form without adhesion (on first access), ``elastic_energy_zeta[:, 0]`` with
+        it. [J/m^2]
     iterations : (n_p,) int -- fixed-point iterations (adhesion; 0 otherwise).
     residual : (n_p,) -- final fixed-point residual, sup|F(x) - x| / max(|x|, |p|). [-]
     sticky : (n_p,) bool -- gamma_eff(zeta = 1) > 0 (macroscopically sticky).
@@ -170,7 +179,7 @@ class ContactResult:
     success: bool
     message: str
     timings: dict = field(default_factory=dict)
-    elastic_energy: np.ndarray | None = None
+    elastic_energy_zeta: np.ndarray | None = None
     iterations: np.ndarray | None = None
     residual: np.ndarray | None = None
     sticky: np.ndarray | None = None
@@ -180,6 +189,38 @@ class ContactResult:
     mean_contact_stress: np.ndarray | None = None
     theory: str = "persson01"
     theory_gamma: float | None = None
+    #: a callable pressure -> (separation, stiffness, elastic_energy, seconds) for a scene
+    #: whose separation is served (see :func:`persson_fast.separation.contact_fields`), or
+    #: the reason (a str) why it is not; set by solve_contact
+    separation_source: object = field(default=None, repr=False, compare=False)
+    _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def _separation_result(self):
+        src = self.separation_source
+        if isinstance(src, str) or src is None:
+            raise ValueError(src or "this result carries no scene for the separation")
+        if "separation" not in self._derived:
+            u, k, energy, seconds = src(np.asarray(self.pressure, dtype=float))
+            self.timings["separation"] = seconds
+            self._derived["separation"] = (u, k, energy)
+        return self._derived["separation"]
+
+    @property
+    def separation(self) -> np.ndarray:
+        """Mean interfacial separation u(p) (see the class docstring). [m]"""
+        return self._separation_result()[0]
+
+    @property
+    def stiffness(self) -> np.ndarray:
+        """Contact stiffness K = -dp/du per nominal area (see the class docstring). [Pa/m]"""
+        return self._separation_result()[1]
+
+    @property
+    def elastic_energy(self) -> np.ndarray:
+        """Stored elastic energy U_el per nominal area at zeta = 1. [J/m^2]"""
+        if self.elastic_energy_zeta is not None:
+            return np.asarray(self.elastic_energy_zeta)[:, 0]
+        return self._separation_result()[2]
 
     def __repr__(self) -> str:
         """A few lines (method, shapes, status, ranges), not every array."""

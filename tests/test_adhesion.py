@@ -68,8 +68,8 @@ def test_profiles_and_energies():
     assert r.zeta[0] == 1.0 and r.area_zeta[0, 0] == 1.0
     g = r.gamma_eff[0]
     assert abs(g[-1] - DGAMMA) < 1e-12                 # gamma_eff(zeta1) = dgamma (Eq. 9)
-    assert r.elastic_energy[0, -1] == 0.0              # nothing stored below the cut-off
-    assert np.all(np.diff(r.elastic_energy[0]) <= 1e-15)
+    assert r.elastic_energy_zeta[0, -1] == 0.0              # nothing stored below the cut-off
+    assert np.all(np.diff(r.elastic_energy_zeta[0]) <= 1e-15)
     beta = 2**-0.5
     q = r.zeta * SEED.q0
     expect = beta * np.sqrt(np.maximum(g, 0) * E_STAR * q)  # Eq. 8 on the returned profile

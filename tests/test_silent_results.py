@@ -144,7 +144,7 @@ def test_empty_pressure_with_adhesion_returns_empty_result():
     for name in ("pressure", "area", "load", "status", "error_estimate", "iterations",
                  "residual", "sticky", "mean_contact_pressure", "zeta_error"):
         assert getattr(r, name).shape == (0,), name
-    for name in ("area_zeta", "sigma_a", "gamma_eff", "elastic_energy", "load_zeta"):
+    for name in ("area_zeta", "sigma_a", "gamma_eff", "elastic_energy_zeta", "load_zeta"):
         assert getattr(r, name).shape == (0, n_z), name
     # the same shapes as without adhesion
     assert plain.area.shape == (0,) and plain.area_zeta.shape == (0, plain.zeta.size)

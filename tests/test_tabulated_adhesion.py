@@ -82,7 +82,7 @@ def analytic():
 
 
 def assert_no_nan(r):
-    for name in ("area", "area_zeta", "sigma_a", "gamma_eff", "elastic_energy", "load_zeta",
+    for name in ("area", "area_zeta", "sigma_a", "gamma_eff", "elastic_energy_zeta", "load_zeta",
                  "error_estimate"):
         arr = np.asarray(getattr(r, name))
         assert np.all(np.isfinite(arr)), f"{name} has non-finite entries"

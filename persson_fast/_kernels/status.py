@@ -18,6 +18,7 @@ BAD_SIGMA_A = 13       # sigma_a is not finite or not of the length of G
 BAD_SCENE = 14         # the adhesive scene tuple is not one adhesive_scene builds
 RTOL_NOT_MET = 15      # the error estimate of the result exceeds rtol after refining to the work cap
 WALL_THINNED = 16      # bnr: more G points than its node cap allows; solved on a subset of them
+BELOW_RESOLVED = 17    # separation: pressure below the resolved range of the quadrature near q0
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -47,6 +48,9 @@ STATUS_MESSAGES = {
     RTOL_NOT_MET: ("the error estimate exceeds rtol after refining up to the work cap: the "
                    "result is less accurate than asked (error_estimate says by how much; a "
                    "kinked or fast wall converges slowly)"),
+    BELOW_RESOLVED: ("pressure below the resolved range of the separation quadrature (its nodes "
+                     "near q0 end before the stress distribution leaves them); u and K are not "
+                     "guaranteed there"),
     WALL_THINNED: ("more G points than the node cap of the bnr solver allows: the result is that "
                    "of a wall through a subset of them (every m-th sample of a smooth stretch, "
                    "kinks kept, the other points interpolated); error_estimate includes the "
