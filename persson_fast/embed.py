@@ -31,6 +31,23 @@ With adhesion::
             out[i], status = embed.adhesive_area(scene, local_pressure[i], rtol)
         return out
 
+A contact law p(u), K(u) of a scene without adhesion (the mean interfacial separation u of
+:func:`persson_fast.solve_separation`), tabulated once with error control::
+
+    law = embed.contact_law(surface, e_star=e_star, rtol=1e-8)     # a ContactLaw
+    table = law.table                                                # pass this to njit code
+
+    @numba.njit
+    def gap_pressure(table, gaps):
+        out = np.empty(gaps.size)
+        for i in range(gaps.size):
+            out[i], status = embed.law_pressure(table, gaps[i])      # or law_stiffness,
+        return out                                                   # law_pressure_stiffness
+
+``law.to_csv(path)`` and ``law.to_xarray()`` export the nodes for other codes
+(:mod:`persson_fast.contact_law` says how to interpolate them). Status 18
+(``BAD_SEPARATION``): u not finite or <= 0; 19 (``LAW_EXTRAPOLATED``): u below the table.
+
 A non-zero status is one of :mod:`persson_fast._kernels.status` (``STATUS_MESSAGES`` says
 what it means); check it as you would a result's ``status``. ``adhesive_area`` is the same
 two-grid, Richardson-extrapolated fixed point as :func:`persson_fast.solve_contact`.
@@ -67,12 +84,15 @@ import numpy as np
 from ._jit import njit_serial
 from ._kernels import status as _status
 from ._kernels.adhesion import solve_adhesive_one
+from ._kernels.contact_law import law_pressure, law_pressure_stiffness, law_stiffness
 from ._kernels.diffusion import solve_one
 from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
+from .contact_law import ContactLaw, contact_law
 from .scene import DETACHMENT_PREFACTOR
 
 __all__ = ["diffusion_area", "diffusion_solve", "adhesive_scene", "adhesive_area",
-           "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
+           "contact_law", "ContactLaw", "law_pressure", "law_stiffness",
+           "law_pressure_stiffness", "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
 
 STATUS_MESSAGES = _status.STATUS_MESSAGES
 

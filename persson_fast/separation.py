@@ -366,22 +366,21 @@ class SeparationResult:
                 f"timings: {_timings(self.timings)}>")
 
 
-def _evaluate(nodes: SeparationNodes, gamma_s: float, p: np.ndarray, parallel=None):
-    """(u, Q, U_el, status) at pressures p > 0 (no checks)."""
+def _evaluate(nodes: SeparationNodes, gamma_s: float, p: np.ndarray, parallel=None,
+              slope: bool = False):
+    """(u, Q, U_el, status) at pressures p > 0 (no checks); with ``slope``, dQ/dp too:
+    (u, Q, dQ/dp, U_el, status)."""
     v, dv, j0 = kfun_table(gamma_s)
     n = p.size
-    u = np.empty(n)
-    q = np.empty(n)
-    energy = np.empty(n)
-    status = np.zeros(n, dtype=np.int64)
+    outs = [np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.zeros(n, dtype=np.int64)]
     args = [np.ascontiguousarray(p, dtype=float), nodes.s_scale, nodes.ln_s_scale, nodes.a_sep,
             nodes.b_energy, nodes.b_suffix, gamma_s, j0, v, dv, KFUN_X_LOW,
-            float(KFUN_STEPS_PER_UNIT), u, q, energy, status]
+            float(KFUN_STEPS_PER_UNIT), *outs]
     if n:
-        run_rows(separation_sweep, separation_sweep_prange, args, (0,), (12, 13, 14, 15), n,
+        run_rows(separation_sweep, separation_sweep_prange, args, (0,), (12, 13, 14, 15, 16), n,
                  parallel)
-        u, q, energy, status = args[12], args[13], args[14], args[15]
-    return u, q, energy, status
+    u, q, dq, energy, status = args[12:17]
+    return (u, q, dq, energy, status) if slope else (u, q, energy, status)
 
 
 def decay_length(surface, *, e_star=None, energy_correction=None) -> float:

@@ -53,15 +53,14 @@ has a non-negative, non-decreasing G(q).
 """
 from __future__ import annotations
 
-import contextlib
 import math
 import os
 import re
-import tempfile
 import warnings
 
 import numpy as np
 
+from ._io import write_text_atomic
 from ._validation import as_float_array, check_positive, optional_import
 
 __all__ = [
@@ -699,7 +698,6 @@ def write_spectrum_csv(surface, path, *, points_per_decade=20) -> str:
     q = _grid(surface, ppd)
     c = np.asarray(surface.psd(q), dtype=np.float64)
     path = os.fspath(path)
-    folder = os.path.dirname(os.path.abspath(path))
     if os.path.isdir(path):
         raise IsADirectoryError(f"cannot write {path!r}: it is a folder")
     how = ("the table's own nodes inside [q0, q1]" if hasattr(surface, "q_table") else
@@ -711,20 +709,7 @@ def write_spectrum_csv(surface, path, *, points_per_decade=20) -> str:
              f"points: {how}",
              "q [1/m],C [m^4]"]
     lines += [f"{a!r},{b!r}" for a, b in zip(q.tolist(), c.tolist())]
-    fd, tmp = tempfile.mkstemp(prefix=f".{os.path.basename(path)}.", suffix=".tmp",
-                               dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write("\n".join(lines) + "\n")
-        umask = os.umask(0)
-        os.umask(umask)
-        with contextlib.suppress(OSError):
-            os.chmod(tmp, 0o666 & ~umask)
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(OSError):
-            os.remove(tmp)
-        raise
+    write_text_atomic(path, "\n".join(lines) + "\n")
     return path
 
 

@@ -13,6 +13,7 @@ Then, with F(s) = gamma_S + 3 (1 - gamma_S) erf(s)^2,
 
     u(p)    = sum_k a_sep[k] * Kfun(p s_scale[k]),   Kfun(s) = int_s^inf F(t) exp(-t^2) dt / t
     Q(p)    = sum_k a_sep[k] * F(s) exp(-s^2),       K(p) = p / Q(p)   (stiffness -dp/du)
+    dQ/dp   = sum_k a_sep[k] s_scale[k] (F'(s) - 2 s F(s)) exp(-s^2)   (for d ln K / d ln p)
     U_el(p) = sum_k b_energy[k] * erf(s) (gamma_S + (1 - gamma_S) erf(s)^2)
 
 Kfun(s) = gamma_S E1(s^2)/2 + 3 (1 - gamma_S) J(s), J(s) = int_s^inf erf(t)^2 exp(-t^2) dt/t.
@@ -38,6 +39,7 @@ from .._jit import njit_serial, njit_sweeps, prange
 from .status import BAD_INPUT, NONFINITE, OK
 
 EULER_GAMMA = 0.57721566490153286061
+TWO_OVER_SQRT_PI = 2.0 / math.sqrt(math.pi)
 #: nodes with s^2 > min s^2 + SKIP_EXPONENT are skipped in u and Q (exp(-45) ~ 3e-20)
 SKIP_EXPONENT = 45.0
 #: the two ranges of the Chebyshev expansions of J (see the module docstring)
@@ -177,7 +179,8 @@ def _first_at_least(sorted_x, value):
 @njit_serial
 def separation_one(p, s_scale, ln_s_scale, a_sep, b_energy, b_suffix, gamma_s, j0,
                    table_v, table_dv, x_lo, inv_step):
-    """(u, Q, U_el) at one pressure p > 0; K = p / Q. Units as in the module docstring.
+    """(u, Q, dQ/dp, U_el) at one pressure p > 0; K = p / Q. Units as in the module
+    docstring (dQ/dp in m/Pa).
 
     ``s_scale`` is sorted ascending (``ln_s_scale`` its logarithm); ``b_suffix[k]`` = sum of
     b_energy[k:] (the energy of the nodes where erf(s) == 1.0 in double precision,
@@ -190,6 +193,7 @@ def separation_one(p, s_scale, ln_s_scale, a_sep, b_energy, b_suffix, gamma_s, j
     ln_p = math.log(p)
     u = 0.0
     q = 0.0
+    dq = 0.0
     energy = b_suffix[k_one] if k_one < n else 0.0
     for k in range(max(k_one, k_skip)):
         s = p * s_scale[k]
@@ -201,14 +205,17 @@ def separation_one(p, s_scale, ln_s_scale, a_sep, b_energy, b_suffix, gamma_s, j
             decay = math.exp(-s2)
             v = kfun_scaled(ln_p + ln_s_scale[k], s2, gamma_s, j0, table_v, table_dv, x_lo,
                             inv_step)
+            f = gamma_s + 3.0 * (1.0 - gamma_s) * e * e
             u += a_sep[k] * v * decay
-            q += a_sep[k] * (gamma_s + 3.0 * (1.0 - gamma_s) * e * e) * decay
-    return u, q, energy
+            q += a_sep[k] * f * decay
+            df = 6.0 * (1.0 - gamma_s) * e * TWO_OVER_SQRT_PI * decay
+            dq += a_sep[k] * s_scale[k] * (df - 2.0 * s * f) * decay
+    return u, q, dq, energy
 
 
 def _separation_sweep(pressure, s_scale, ln_s_scale, a_sep, b_energy, b_suffix, gamma_s, j0,
                       table_v, table_dv, x_lo, inv_step,
-                      out_u, out_q, out_energy, out_status):
+                      out_u, out_q, out_dq, out_energy, out_status):
     """Rows of :func:`separation_one`; out_status 0 ok, BAD_INPUT for p <= 0 or not finite,
     NONFINITE when a sum is not finite."""
     for i in prange(pressure.size):
@@ -216,13 +223,15 @@ def _separation_sweep(pressure, s_scale, ln_s_scale, a_sep, b_energy, b_suffix, 
         if not (p > 0.0) or not math.isfinite(p):
             out_u[i] = math.nan
             out_q[i] = math.nan
+            out_dq[i] = math.nan
             out_energy[i] = math.nan
             out_status[i] = BAD_INPUT
             continue
-        u, q, energy = separation_one(p, s_scale, ln_s_scale, a_sep, b_energy, b_suffix,
-                                      gamma_s, j0, table_v, table_dv, x_lo, inv_step)
+        u, q, dq, energy = separation_one(p, s_scale, ln_s_scale, a_sep, b_energy, b_suffix,
+                                          gamma_s, j0, table_v, table_dv, x_lo, inv_step)
         out_u[i] = u
         out_q[i] = q
+        out_dq[i] = dq
         out_energy[i] = energy
         ok = math.isfinite(u) and math.isfinite(q) and math.isfinite(energy)
         out_status[i] = OK if ok else NONFINITE

@@ -19,6 +19,8 @@ BAD_SCENE = 14         # the adhesive scene tuple is not one adhesive_scene buil
 RTOL_NOT_MET = 15      # the error estimate of the result exceeds rtol after refining to the work cap
 WALL_THINNED = 16      # bnr: more G points than its node cap allows; solved on a subset of them
 BELOW_RESOLVED = 17    # separation: pressure below the resolved range of the quadrature near q0
+BAD_SEPARATION = 18    # contact law: the separation is not finite or not > 0
+LAW_EXTRAPOLATED = 19  # contact law: separation below the table (pressure above it), continued
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -48,6 +50,10 @@ STATUS_MESSAGES = {
     RTOL_NOT_MET: ("the error estimate exceeds rtol after refining up to the work cap: the "
                    "result is less accurate than asked (error_estimate says by how much; a "
                    "kinked or fast wall converges slowly)"),
+    BAD_SEPARATION: "separation must be finite and > 0 [m]; p and K are NaN",
+    LAW_EXTRAPOLATED: ("separation below the contact law's table (a pressure above its range): p "
+                       "and K are a continuation with the last slope, not a result (build the "
+                       "law with a larger pressure_max)"),
     BELOW_RESOLVED: ("pressure below the resolved range of the separation quadrature (its nodes "
                      "near q0 end before the stress distribution leaves them); u and K are not "
                      "guaranteed there"),

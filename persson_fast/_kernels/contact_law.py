@@ -1,0 +1,106 @@
+"""Compiled evaluation of a tabulated pressure-separation law p(u), K(u) (no adhesion).
+
+A law is the tuple ``(v, y, dy, z, dz)`` of five (n,) float64 arrays that
+:func:`persson_fast.contact_law.contact_law` builds: v_i = ln u_i ascending (u in m),
+y_i = ln p_i (p in Pa, descending) with the exact slopes dy/dv = -u K_i/p_i, and
+z_i = ln K_i (K in Pa/m) with the exact slopes dz/dv. Between nodes y(v) and z(v) are cubic
+Hermite interpolants (y monotone: the builder checks the Fritsch-Carlson conditions on
+every interval). ln p and ln K are smooth in ln u at both ends (ln p ~ c - u/u0 at small p,
+ln u ~ -p^2/(4 G1) at large p), which they are not in u. Beyond the largest separation
+(the small-pressure end) ln p and ln K continue linearly in u with the end slope -K/p:
+the exact law p ~ exp(-u/u0), K = p/u0 there, to the builder's tolerance; below the
+smallest separation (pressures above the table) they continue linearly in v, and the
+status says ``LAW_EXTRAPOLATED``.
+
+Status: 0 ok; ``BAD_SEPARATION`` (u not finite or <= 0: p and K are NaN);
+``LAW_EXTRAPOLATED`` (u below the table: p and K are a continuation, not a result).
+"""
+from __future__ import annotations
+
+import math
+
+from .._jit import njit_serial
+from .status import BAD_SEPARATION, LAW_EXTRAPOLATED, OK
+
+
+@njit_serial
+def _interval(u_nodes, u):
+    """i with u_nodes[i] <= u < u_nodes[i + 1], clipped to [0, n - 2] (binary search)."""
+    lo = 0
+    hi = u_nodes.size - 1
+    while hi - lo > 1:
+        mid = (lo + hi) >> 1
+        if u_nodes[mid] <= u:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit_serial
+def _hermite(v_nodes, f, df, i, v):
+    """Cubic Hermite interpolant of (f, df/dv) on interval i at v."""
+    h = v_nodes[i + 1] - v_nodes[i]
+    t = (v - v_nodes[i]) / h
+    t2 = t * t
+    t3 = t2 * t
+    return ((2.0 * t3 - 3.0 * t2 + 1.0) * f[i] + (3.0 * t2 - 2.0 * t3) * f[i + 1]
+            + h * ((t3 - 2.0 * t2 + t) * df[i] + (t3 - t2) * df[i + 1]))
+
+
+@njit_serial
+def law_logs(law, u):
+    """(ln p, ln K, status) of the law at separation u [m]."""
+    v_nodes, y, dy, z, dz = law
+    n = v_nodes.size
+    if not (u > 0.0) or not math.isfinite(u) or n < 2:
+        return math.nan, math.nan, BAD_SEPARATION
+    v = math.log(u)
+    if v >= v_nodes[n - 1]:
+        # small pressures: ln p linear in u with the end slope -K/p, and K/p constant
+        u_end = math.exp(v_nodes[n - 1])
+        slope = dy[n - 1] / u_end
+        shift = slope * (u - u_end)
+        return y[n - 1] + shift, z[n - 1] + shift, OK
+    if v < v_nodes[0]:
+        return (y[0] + dy[0] * (v - v_nodes[0]), z[0] + dz[0] * (v - v_nodes[0]),
+                LAW_EXTRAPOLATED)
+    i = _interval(v_nodes, v)
+    return _hermite(v_nodes, y, dy, i, v), _hermite(v_nodes, z, dz, i, v), OK
+
+
+@njit_serial
+def law_pressure(law, u):
+    """(p [Pa], status) of the law at separation u [m]."""
+    v_nodes, y, dy, z, dz = law
+    n = v_nodes.size
+    if not (u > 0.0) or not math.isfinite(u) or n < 2:
+        return math.nan, BAD_SEPARATION
+    v = math.log(u)
+    if v >= v_nodes[n - 1]:
+        u_end = math.exp(v_nodes[n - 1])
+        return math.exp(y[n - 1] + dy[n - 1] / u_end * (u - u_end)), OK
+    if v < v_nodes[0]:
+        return math.exp(y[0] + dy[0] * (v - v_nodes[0])), LAW_EXTRAPOLATED
+    return math.exp(_hermite(v_nodes, y, dy, _interval(v_nodes, v), v)), OK
+
+
+@njit_serial
+def law_stiffness(law, u):
+    """(K = -dp/du [Pa/m], status) of the law at separation u [m]."""
+    _, ln_k, status = law_logs(law, u)
+    return math.exp(ln_k), status
+
+
+@njit_serial
+def law_pressure_stiffness(law, u):
+    """(p [Pa], K [Pa/m], status) of the law at separation u [m], from one look-up."""
+    ln_p, ln_k, status = law_logs(law, u)
+    return math.exp(ln_p), math.exp(ln_k), status
+
+
+@njit_serial
+def law_sweep(law, u, out_p, out_k, out_status):
+    """The law at every separation of ``u`` (vectorised form for the Python layer)."""
+    for i in range(u.size):
+        out_p[i], out_k[i], out_status[i] = law_pressure_stiffness(law, u[i])
