@@ -234,6 +234,11 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--detachment-prefactor", type=float, metavar="BETA",
                    help="beta of seed Eq. 8 (default 1/sqrt 2)")
     g.add_argument("--pull-off", action="store_true", help="also compute the pull-off stress")
+    ct.add_argument("--separation", action="store_true",
+                    help="also print (and write to --csv) the mean interfacial separation u "
+                         "[m], the contact stiffness K = -dp/du [Pa/m] and the stored elastic "
+                         "energy U_el [J/m^2] (scenes without adhesion; --energy-correction "
+                         "sets S)")
     g = ct.add_argument_group("area theory")
     g.add_argument("--theory", choices=THEORY_NAMES,
                    help="area theory: persson01 (the original, default) or a corrected one "
@@ -254,7 +259,8 @@ def build_parser() -> argparse.ArgumentParser:
     ct.add_argument("--csv", metavar="FILE",
                     help="also write the table to this CSV file (replaced if it exists); "
                          "columns: pressure_Pa, area, force_per_contact_area_Pa, "
-                         "compression_per_contact_area_Pa, status[, pull_off_stress_Pa]")
+                         "compression_per_contact_area_Pa, status[, separation_m, "
+                         "stiffness_Pa_per_m, elastic_energy_J_per_m2][, pull_off_stress_Pa]")
 
     sub.add_parser("info", help="versions, threads and kernel compile time",
                    description="Print versions and threads, then compile (or load from the "
@@ -544,7 +550,7 @@ def _resolve_contact(args) -> dict:
     cfg = _load_toml(args.config) if args.config else {}
     known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
                  "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off",
-                 "theory", "theory_gamma"}
+                 "theory", "theory_gamma", "separation"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -624,6 +630,7 @@ def _resolve_contact(args) -> dict:
         if value is not None:
             adhesion[key] = value
     want_pull_off = bool(args.pull_off or cfg.get("pull_off", False))
+    want_separation = bool(args.separation or cfg.get("separation", False))
     theory = {}
     name = args.theory or cfg.get("theory")
     if name is not None:
@@ -637,7 +644,7 @@ def _resolve_contact(args) -> dict:
         theory["theory_gamma"] = gamma
     return {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
             "method": method, "rtol": rtol, "csv": csv_path, "adhesion": adhesion,
-            "pull_off": want_pull_off, "theory": theory}
+            "pull_off": want_pull_off, "theory": theory, "separation": want_separation}
 
 
 def _pressure_range(pmin, pmax, n) -> np.ndarray:
@@ -689,6 +696,11 @@ def _cmd_contact(args) -> int:
     s = _resolve_contact(args)
     surface = _make_surface(s["model"], s["params"])
     e_star = s["e_star"]
+    if s["separation"] and (s["adhesion"].get("work_of_adhesion", 0.0) > 0
+                            or s["theory"].get("theory", "persson01") != "persson01"):
+        raise CommandError("--separation is available for scenes without adhesion and the "
+                           "original theory (persson01) only: the separation is not derived "
+                           "with adhesion or the corrected theories here")
     t0 = time.perf_counter()
     res = pf.solve_contact(surface, s["pressure"], e_star=e_star, method=s["method"],
                            rtol=s["rtol"], **s["adhesion"], **s["theory"])
@@ -707,10 +719,25 @@ def _cmd_contact(args) -> int:
     print(f"method: {res.method} (asked {s['method']!r}), rtol = {s['rtol']:g}")
     if res.theory != "persson01":
         print(f"area theory: {res.theory}, gamma = {res.theory_gamma:g}")
-    print(f"{'pressure [Pa]':>14}  {'A/A0':>12}  {'mean p_c [Pa]':>13}  status")
-    for p, a, mp, st in zip(res.pressure, res.area, res.mean_contact_pressure, res.status):
+    extra = {}
+    if s["separation"]:
+        try:
+            extra = {"separation_m": res.separation, "stiffness_Pa_per_m": res.stiffness,
+                     "elastic_energy_J_per_m2": res.elastic_energy}
+        except ValueError as exc:
+            raise CommandError(f"--separation: {exc}") from None
+        print(f"separation: closed form (Persson 2007); decay length u0 = "
+              f"{pf.decay_length(surface, e_star=e_star, energy_correction=s['adhesion'].get('energy_correction')):.5g} m "
+              f"(p ~ exp(-u/u0) at small p)")
+    head = f"{'pressure [Pa]':>14}  {'A/A0':>12}  {'mean p_c [Pa]':>13}"
+    if extra:
+        head += f"  {'u [m]':>12}  {'K [Pa/m]':>12}  {'U_el [J/m^2]':>12}"
+    print(head + "  status")
+    for i, (p, a, mp, st) in enumerate(zip(res.pressure, res.area, res.mean_contact_pressure,
+                                           res.status)):
         mp_s = f"{mp:13.5g}" if np.isfinite(mp) else f"{'-':>13}"
-        print(f"{p:14.6g}  {a:12.6g}  {mp_s}  {'ok' if st == 0 else f'code {int(st)}'}")
+        more = "".join(f"  {col[i]:12.6g}" for col in extra.values())
+        print(f"{p:14.6g}  {a:12.6g}  {mp_s}{more}  {'ok' if st == 0 else f'code {int(st)}'}")
     if not res.success:
         print(f"warning: {res.message}")
     if s["adhesion"].get("work_of_adhesion", 0.0) > 0:
@@ -733,7 +760,7 @@ def _cmd_contact(args) -> int:
         columns = {"pressure_Pa": res.pressure, "area": res.area,
                    "force_per_contact_area_Pa": res.mean_contact_pressure,
                    "compression_per_contact_area_Pa": res.mean_contact_stress,
-                   "status": res.status}
+                   "status": res.status, **extra}
         if sigma_c is not None:
             columns["pull_off_stress_Pa"] = np.full(res.pressure.shape, sigma_c)
         with _OutputSet() as outputs:

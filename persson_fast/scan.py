@@ -184,6 +184,10 @@ def _solve_scene(surface, solve_kw, pressure, options):
     if options["profiles"]:
         for name in ("area_zeta", "sigma_a", "gamma_eff"):
             out[name] = np.zeros((n_p, n_z))
+    if options.get("separation"):
+        out["separation"] = np.full(n_p, np.inf)
+        out["stiffness"] = np.zeros(n_p)
+        out["elastic_energy"] = np.zeros(n_p)
     if rows.size:
         try:
             r = solve_contact(surface, pressure[rows], method=options["method"],
@@ -191,7 +195,7 @@ def _solve_scene(surface, solve_kw, pressure, options):
                               **options.get("theory", {}), **solve_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
             for name in ("area", "mean_contact_pressure", "error_estimate", "area_zeta",
-                         "sigma_a", "gamma_eff"):
+                         "sigma_a", "gamma_eff", "separation", "stiffness", "elastic_energy"):
                 if name in out:
                     out[name][:] = np.nan
             out["status"][:] = SCENE_ERROR
@@ -205,6 +209,10 @@ def _solve_scene(surface, solve_kw, pressure, options):
             out["error_estimate"][rows] = r.error_estimate
             out["status"][rows] = r.status
             out["method"] = str(r.method)
+            if options.get("separation"):
+                out["separation"][rows] = r.separation
+                out["stiffness"][rows] = r.stiffness
+                out["elastic_energy"][rows] = r.elastic_energy
             if r.success:
                 solve_message = str(r.message)
             else:
@@ -740,7 +748,7 @@ def _open_client(client):
 def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
          detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None, profiles=False,
          pull_off=False, pull_off_rtol=None, client=None, chunks=None, workers=None,
-         progress=None, theory="persson01", theory_gamma=None):
+         progress=None, theory="persson01", theory_gamma=None, separation=False):
     """Contact area over a grid of scenes crossed with nominal pressures.
 
     Parameters
@@ -811,6 +819,10 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         the default, or a corrected one, "yp08", "wm17", "xu24", for scenes without
         adhesion) and its gamma (None: the published default). Held fixed over the scan and
         recorded in ``attrs``; to compare theories, scan once per theory. [-]
+    separation : bool
+        Also return the mean interfacial separation, the contact stiffness and the stored
+        elastic energy of every scene and pressure (scenes without adhesion, theory
+        "persson01"; otherwise a ValueError before anything is solved).
 
     Returns
     -------
@@ -830,6 +842,10 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
           ``profiles``.
         * ``pull_off``, ``pull_off_error`` (...) -- with ``pull_off``: the pull-off stress
           and its estimated error. [Pa]
+        * ``separation`` [m], ``stiffness`` [Pa/m], ``elastic_energy`` [J/m^2]
+          (..., pressure) -- with ``separation``: the mean interfacial separation, the
+          contact stiffness -dp/du and U_el of each scene (closed form,
+          :func:`~persson_fast.solve_separation`; inf, 0, 0 where p <= 0).
 
         Fixed parameters are scalar coordinates; ``attrs`` hold the surface model, method,
         rtol and how the scan ran. ``ds.to_dataframe()`` gives one row per (scene, pressure).
@@ -891,7 +907,8 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     theory, theory_gamma = check_theory(theory, theory_gamma)
     pull_off_rtol = rtol if pull_off_rtol is None else _check_rtol(pull_off_rtol, "pull_off_rtol")
     p = _check_pressure(pressure)
-    for name, flag in (("profiles", profiles), ("pull_off", pull_off)):
+    for name, flag in (("profiles", profiles), ("pull_off", pull_off),
+                       ("separation", separation)):
         if not isinstance(flag, (bool, np.bool_)):
             raise ValueError(f"{name} must be True or False; got {name} = {flag!r}")
     chunks = _check_positive_int(chunks, "chunks")
@@ -907,6 +924,12 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     if theory != "persson01" and any(adhesive):
         i = adhesive.index(True)
         check_theory_scene(theory, grid.scenes[i][2]["work_of_adhesion"])
+    if separation and (theory != "persson01" or any(adhesive)):
+        which = (f"theory = {theory!r}" if theory != "persson01" else
+                 f"the scene {grid.labels[adhesive.index(True)]} has work_of_adhesion > 0")
+        raise ValueError(f"separation=True needs scenes without adhesion and the original "
+                         f"theory (persson01): the separation is not derived otherwise here; "
+                         f"{which}")
     profile_zeta = None
     zeta_plain = zeta_adhesive = zeta
     if profiles:
@@ -916,6 +939,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
                "zeta_adhesive": zeta_adhesive, "profile_zeta": profile_zeta,
                "profiles": bool(profiles), "pull_off": bool(pull_off),
                "pull_off_rtol": pull_off_rtol, "parallel": None,
+               "separation": bool(separation),
                "theory": {} if theory == "persson01" else {"theory": theory,
                                                           "theory_gamma": theory_gamma}}
     if workers is None:
@@ -1034,6 +1058,14 @@ def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
                            {"long_name": "detachment stress sigma_a(zeta)", "units": "Pa"})
         data["gamma_eff"] = (per_z, stack("gamma_eff", float, (n_p, n_z)),
                              {"long_name": "effective interfacial energy", "units": "J/m^2"})
+    if options.get("separation"):
+        data["separation"] = (per_p, stack("separation", float, (n_p,)),
+                              {"long_name": "mean interfacial separation u", "units": "m"})
+        data["stiffness"] = (per_p, stack("stiffness", float, (n_p,)),
+                             {"long_name": "contact stiffness -dp/du", "units": "Pa/m"})
+        data["elastic_energy"] = (per_p, stack("elastic_energy", float, (n_p,)),
+                                  {"long_name": "stored elastic energy U_el per nominal area",
+                                   "units": "J/m^2"})
     if options["pull_off"]:
         data["pull_off"] = (dims, stack("pull_off", float),
                             {"long_name": "pull-off stress sigma_c", "units": "Pa"})
