@@ -40,7 +40,8 @@ def _with_nodes(monkeypatch_values, surface, e, p, gamma):
     return u, np.asarray(p) / q, energy
 
 
-DOUBLED = {"PANEL_NODES": 20, "PANELS_PER_DECADE": 8, "Q0_RATIO": 2 ** 0.25, "Q0_LEVELS": 200,
+DOUBLED = {"PANEL_NODES": 20, "TAU_PANEL_NODES": 20, "PANELS_PER_DECADE": 8, "Q0_RATIO": 2 ** 0.5,
+           "Q0_LEVELS": 80, "LN_G_STEP": 0.5,
            "Q1_LEVELS": 24}
 
 
