@@ -42,7 +42,7 @@ A contact law p(u), K(u) of a scene without adhesion (the mean interfacial separ
         out = np.empty(gaps.size)
         for i in range(gaps.size):
             out[i], status = embed.law_pressure(table, gaps[i])      # or law_stiffness,
-        return out                                                   # law_pressure_stiffness
+        return out                                   # law_pressure_stiffness, law_separation
 
 ``law.to_csv(path)`` and ``law.to_xarray()`` export the nodes for other codes
 (:mod:`persson_fast.contact_law` says how to interpolate them). Status 18
@@ -84,7 +84,8 @@ import numpy as np
 from ._jit import njit_serial
 from ._kernels import status as _status
 from ._kernels.adhesion import solve_adhesive_one
-from ._kernels.contact_law import law_pressure, law_pressure_stiffness, law_stiffness
+from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_separation,
+                                   law_stiffness)
 from ._kernels.diffusion import solve_one
 from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
 from .contact_law import ContactLaw, contact_law
@@ -92,7 +93,7 @@ from .scene import DETACHMENT_PREFACTOR
 
 __all__ = ["diffusion_area", "diffusion_solve", "adhesive_scene", "adhesive_area",
            "contact_law", "ContactLaw", "law_pressure", "law_stiffness",
-           "law_pressure_stiffness", "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
+           "law_pressure_stiffness", "law_separation", "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
 
 STATUS_MESSAGES = _status.STATUS_MESSAGES
 

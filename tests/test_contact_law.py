@@ -11,7 +11,7 @@ import pytest
 
 import persson_fast as pf
 from persson_fast import embed
-from persson_fast._kernels.status import BAD_SEPARATION, LAW_EXTRAPOLATED, OK
+from persson_fast._kernels.status import BAD_PRESSURE, BAD_SEPARATION, LAW_EXTRAPOLATED, OK
 from persson_fast.surfaces import seed_e_star, seed_scene
 
 SELF_AFFINE = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
@@ -150,3 +150,31 @@ def test_refusals():
     law = embed.contact_law(pf.Scene(SELF_AFFINE, e_star=1e9), pressure_max=1e7)
     assert law.pressure_max == pytest.approx(1e7, rel=1e-12)
     assert "ContactLaw" in repr(law)
+
+
+@numba.njit(cache=False)
+def _inverse(table, pressures):
+    u = np.empty(pressures.size)
+    back = np.empty(pressures.size)
+    status = np.empty(pressures.size, dtype=np.int64)
+    for i in range(pressures.size):
+        u[i], status[i] = embed.law_separation(table, pressures[i])
+        back[i], _ = embed.law_pressure(table, u[i])
+    return u, back, status
+
+
+def test_law_separation_inverts_law_pressure():
+    law = embed.contact_law(SELF_AFFINE, e_star=1e9, rtol=1e-6)
+    p = np.geomspace(law.pressure_min / 1e3, law.pressure_max, 2001)
+    u, back, status = _inverse(law.table, p)
+    assert np.all(status == OK)
+    # to rounding: ln u is rounded (|ln u| ~ 11-55) and |d ln p / d ln u| reaches ~20
+    np.testing.assert_allclose(back, p, rtol=5e-13)
+    assert np.all(np.diff(u) < 0)
+    exact = pf.solve_separation(SELF_AFFINE, p, e_star=1e9).separation
+    # u(p) is the inverse of a law within rtol in p: |du| <= rtol p / K
+    k = pf.solve_separation(SELF_AFFINE, p, e_star=1e9).stiffness
+    assert np.all(np.abs(u - exact) <= 1e-6 * p / k)
+    u_out, _, st = _inverse(law.table, np.array([law.pressure_max * 2, 0.0, -1.0, np.nan]))
+    assert list(st) == [LAW_EXTRAPOLATED, BAD_PRESSURE, BAD_PRESSURE, BAD_PRESSURE]
+    assert u_out[0] < law.separation[0] and np.all(np.isnan(u_out[1:]))

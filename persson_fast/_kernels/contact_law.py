@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 
 from .._jit import njit_serial
-from .status import BAD_SEPARATION, LAW_EXTRAPOLATED, OK
+from .status import BAD_PRESSURE, BAD_SEPARATION, LAW_EXTRAPOLATED, OK
 
 
 @njit_serial
@@ -97,6 +97,61 @@ def law_pressure_stiffness(law, u):
     """(p [Pa], K [Pa/m], status) of the law at separation u [m], from one look-up."""
     ln_p, ln_k, status = law_logs(law, u)
     return math.exp(ln_p), math.exp(ln_k), status
+
+
+@njit_serial
+def law_separation(law, p):
+    """(u [m], status) of the law at pressure p [Pa]: the inverse of :func:`law_pressure`.
+
+    On a table interval the monotone cubic ln p(ln u) is inverted by Newton's method
+    safeguarded by bisection (to rounding), so law_pressure(law, u) returns p to rounding;
+    below the table's pressures the exponential tail is inverted exactly; above them the
+    continuation is, with status ``LAW_EXTRAPOLATED``. p not finite or <= 0: NaN,
+    ``BAD_PRESSURE``.
+    """
+    v_nodes, y, dy, z, dz = law
+    n = v_nodes.size
+    if not (p > 0.0) or not math.isfinite(p) or n < 2:
+        return math.nan, BAD_PRESSURE
+    target = math.log(p)
+    if target <= y[n - 1]:                       # small pressures: the exponential tail
+        u_end = math.exp(v_nodes[n - 1])
+        return u_end + (target - y[n - 1]) * u_end / dy[n - 1], OK
+    if target > y[0]:
+        return math.exp(v_nodes[0] + (target - y[0]) / dy[0]), LAW_EXTRAPOLATED
+    # y descends: the interval i with y[i] >= target > y[i + 1]
+    lo = 0
+    hi = n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) >> 1
+        if y[mid] >= target:
+            lo = mid
+        else:
+            hi = mid
+    a = v_nodes[lo]
+    b = v_nodes[lo + 1]
+    v = a + (b - a) * (y[lo] - target) / (y[lo] - y[lo + 1])
+    for _ in range(60):
+        f = _hermite(v_nodes, y, dy, lo, v) - target
+        if f > 0.0:
+            a = v
+        else:
+            b = v
+        h = v_nodes[lo + 1] - v_nodes[lo]
+        t = (v - v_nodes[lo]) / h
+        slope = ((6.0 * t * t - 6.0 * t) * (y[lo] - y[lo + 1]) / h
+                 + (3.0 * t * t - 4.0 * t + 1.0) * dy[lo] + (3.0 * t * t - 2.0 * t) * dy[lo + 1])
+        if f == 0.0:
+            break
+        step = f / slope if slope < 0.0 else math.nan
+        v_new = v - step
+        if not (a <= v_new <= b):               # also for NaN: bisect
+            v_new = 0.5 * (a + b)
+        if abs(v_new - v) <= 4e-16 * abs(v):
+            v = v_new
+            break
+        v = v_new
+    return math.exp(v), OK
 
 
 @njit_serial
