@@ -13,7 +13,7 @@ from ._validation import as_float_array, check_finite, check_nondecreasing, chec
 from .adhesion import solve_adhesive_contact, warm_adhesion
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
-from .separation import ADHESION_REFUSED, contact_fields
+from .separation import ADHESION_REFUSED, contact_fields, warm_separation
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep, warm_sweeps
 from .theories import check_theory, check_theory_scene, solve_theory_contact
@@ -41,6 +41,9 @@ def warmup(prange: bool = False) -> dict:
     t0 = time.perf_counter()
     warm_adhesion(prange)
     timings["adhesion"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    warm_separation()
+    timings["separation"] = time.perf_counter() - t0
     return timings
 
 def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:

@@ -58,11 +58,13 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.special import erf, erfc, exp1
 
+from ._kernels.contact_law import law_sweep
 from ._kernels.separation import (J_END, J_SPLIT, build_kfun_table,
                                   chebyshev, separation_sweep, separation_sweep_prange)
 from ._kernels.status import BELOW_RESOLVED, OK, STATUS_MESSAGES
 from ._validation import as_float_array, check_finite
 from .scene import DETACHMENT_PREFACTOR, _check_rtol, _check_scene_args, unpack_scene
+from .surfaces import SelfAffine
 from .sweep import run_rows
 
 #: Gauss-Legendre nodes per panel (ln q panels; tau panels near q0)
@@ -578,3 +580,17 @@ def contact_fields(surface, e_star, energy_correction, parallel, pressure):
                              parallel=parallel)
         u[pos], k[pos], energy[pos] = r.separation, r.stiffness, r.elastic_energy
     return u, k, energy, time.perf_counter() - t0
+
+
+def warm_separation() -> None:
+    """Compile (or load from the disk cache) the separation and contact-law kernels."""
+    from ._kernels.contact_law import law_separation
+
+    nodes = nodes_for(SelfAffine(hurst=0.8, q0=1.0, q1=10.0, C0=1.0), 1.0)
+    _evaluate(nodes, 1.0, np.array([0.1]), parallel=False, slope=True)
+    kfun_table(1.0)
+    table = (np.array([-1.0, 0.0]), np.array([1.0, 0.0]), np.array([-1.0, -1.0]),
+             np.array([1.0, 0.0]), np.array([-1.0, -1.0]))
+    out = [np.empty(1), np.empty(1), np.empty(1, dtype=np.int64)]
+    law_sweep(table, np.array([0.5]), *out)
+    law_separation(table, 1.5)
