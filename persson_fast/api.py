@@ -13,6 +13,8 @@ from ._validation import as_float_array, check_finite, check_nondecreasing, chec
 from .adhesion import solve_adhesive_contact, warm_adhesion
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
+from .plasticity import (NOT_AVAILABLE, check_below_hardness, check_hardness,
+                         check_yield_method, constant_yield)
 from .separation import ADHESION_REFUSED, contact_fields, warm_separation
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep, warm_sweeps
@@ -81,8 +83,8 @@ def _is_linear(G: np.ndarray, rows: np.ndarray) -> bool:
 _WALL_BLOCK_ELEMENTS = 2_000_000
 
 
-def solve_diffusion(G, pressure, sigma_a=0.0, *, kinks=None, method="cn", rtol=1e-6, n_damp=2,
-                    parallel=None, level=None) -> DiffusionResult:
+def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, method="cn",
+                    rtol=1e-6, n_damp=2, parallel=None, level=None) -> DiffusionResult:
     """Solve the stress diffusion with a prescribed absorbing wall.
 
     Parameters
@@ -101,6 +103,13 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, kinks=None, method="cn", rtol=1
         must return finite values of the same shape on [0, G[-1]]) is followed from G = 0 and
         sampled by :func:`persson_fast.walls.sample_wall` finely enough that its
         piecewise-linear error is part of rtol; results are still reported at G only. [Pa]
+    sigma_y : float or None
+        The yield wall (penetration hardness) at +sigma_y: what crosses it has yielded and
+        stays in contact carrying sigma_y (``plastic_area``, ``plastic_load``; ``area`` is the
+        elastic area between the walls). In this version a constant sigma_y > 0 with
+        sigma_a = 0, served exactly by method "analytic" (and "auto"), see
+        :mod:`persson_fast.plasticity`; an array or callable sigma_y, or sigma_y with a
+        detachment wall, raises a ValueError that says why. None (default): no yield wall. [Pa]
     kinks : array_like or None
         Only with a callable sigma_a: diffusion times where the wall's slope jumps, put on
         the schedule exactly. Kinks not declared are found by the adaptive sampling (which
@@ -157,6 +166,8 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, kinks=None, method="cn", rtol=1
         raise ValueError("G must hold at least one diffusion time [Pa^2]; got an empty array")
     check_nonnegative(G, "G", "Pa^2")
     check_nondecreasing(G, "G", "Pa^2")
+    if sigma_y is not None:
+        return _solve_yield(G, pressure, sigma_a, sigma_y, method, kinks, level)
     wall = None
     if callable(sigma_a):
         # a wall as a function: sampled below to the tolerance, on a schedule that holds G
@@ -261,6 +272,66 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, kinks=None, method="cn", rtol=1
     )
 
 
+def _solve_yield(G, pressure, sigma_a, sigma_y, method, kinks, level) -> DiffusionResult:
+    """solve_diffusion with a yield wall (a constant sigma_y, no detachment wall)."""
+    hardness = check_hardness(sigma_y, "sigma_y")
+    if callable(sigma_a) or np.any(as_float_array(sigma_a, "sigma_a", "Pa") != 0):
+        raise ValueError(f"sigma_y with a detachment wall (sigma_a != 0): {NOT_AVAILABLE}")
+    check_yield_method(method)
+    if kinks is not None or level is not None:
+        raise ValueError("kinks and level apply to the grid methods; with a yield wall the "
+                         "exact series serves (method 'analytic'); got "
+                         f"kinks = {kinks!r}, level = {level!r}")
+    p = _check_pressure(pressure, allow_negative=False)
+    check_below_hardness(p, hardness, "sigma_y")
+    t0 = time.perf_counter()
+    out = constant_yield(p, G, hardness)
+    n_p, n_t = p.size, G.size
+    status = np.zeros(n_p, dtype=np.int64)
+    return DiffusionResult(
+        G=G, pressure=p, sigma_a=np.zeros((n_p, n_t)), area=out["elastic_area"],
+        load=out["load"], detached_area=out["detached_area"],
+        detached_load=out["detached_load"], error_estimate=np.zeros((n_p, n_t)),
+        method="analytic", status=status, success=True, message="ok",
+        timings={"solve": time.perf_counter() - t0}, plastic_area=out["plastic_area"],
+        plastic_load=out["plastic_load"], sigma_y=hardness)
+
+
+def _solve_contact_yield(surface, pressure, zeta, e, dg, method, theory, hardness):
+    """solve_contact with a constant yield wall (no adhesion): the exact two-wall series."""
+    if dg > 0:
+        raise ValueError(f"hardness with work_of_adhesion > 0: {NOT_AVAILABLE}; got hardness "
+                         f"= {hardness!r} and work_of_adhesion = {dg!r}")
+    if theory != "persson01":
+        raise ValueError(f"hardness applies to the original theory (theory='persson01'); the "
+                         f"corrected theories have no yield wall; got theory = {theory!r}")
+    check_yield_method(method, "hardness")
+    z = _check_zeta(zeta, surface)
+    p = _check_pressure(pressure, allow_negative=False)
+    check_below_hardness(p, hardness)
+    t0 = time.perf_counter()
+    G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
+    G[0] = 0.0
+    out = constant_yield(p, G, hardness)
+    area_z = out["elastic_area"] + out["plastic_area"]
+    area = area_z[:, -1].copy()
+    zeros = np.zeros((p.size, z.size))
+    status = np.zeros(p.size, dtype=np.int64)
+    return ContactResult(
+        pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=zeros,
+        gamma_eff=zeros.copy(), load=out["load"][:, -1].copy(),
+        mean_contact_pressure=per_contact_area(p, area),
+        mean_contact_stress=per_contact_area(p, area),
+        detached_area=out["detached_area"][:, -1].copy(), detached_load=np.zeros(p.size),
+        error_estimate=np.zeros(p.size), method="analytic", status=status, success=True,
+        message="ok", timings={"solve": time.perf_counter() - t0},
+        separation_source=("separation, stiffness and elastic_energy are derived for elastic "
+                           f"contact only; got hardness = {hardness!r} Pa"),
+        elastic_area=out["elastic_area"][:, -1].copy(),
+        plastic_area=out["plastic_area"][:, -1].copy(),
+        plastic_area_zeta=out["plastic_area"], hardness=hardness)
+
+
 def _analytic_linear(G, rows, p):
     """Closed forms for walls a + b G (images when a = b = 0)."""
     n_p, n_t = rows.shape
@@ -341,7 +412,7 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
 def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
                   detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None,
                   parallel=None, adhesion_controls=None, theory="persson01",
-                  theory_gamma=None) -> ContactResult:
+                  theory_gamma=None, hardness=None) -> ContactResult:
     """Relative real contact area of a rough surface at many nominal pressures.
 
     Parameters
@@ -399,6 +470,15 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         gamma of the corrected theory; None (default) takes its published default (0.42
         for yp08 and xu24, 5/9 for wm17), which ``result.theory_gamma`` records. Range
         (0, 1] ((0.01019, 1] for wm17); must be None for "persson01". [-]
+    hardness : float or None
+        The yield wall: a constant penetration hardness sigma_Y > 0 [Pa]. Then
+        ``result.area`` is the real contact area A_el + A_pl (elastic plus yielded, both in
+        contact), ``result.elastic_area`` and ``result.plastic_area`` the two parts (and
+        ``plastic_area_zeta`` its profile), by the exact two-wall series of
+        :mod:`persson_fast.plasticity` (method "auto" or "analytic"; scenes without
+        adhesion; nominal pressures <= hardness). A scale-dependent hardness (a callable of
+        zeta or a table) and hardness with adhesion are not available in this version and
+        raise a ValueError that says so. None (default): elastic, bitwise as before.
 
     Returns
     -------
@@ -419,8 +499,10 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     """
     surface, kw = unpack_scene(surface, {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
                                          "energy_correction": energy_correction,
-                                         "detachment_prefactor": detachment_prefactor},
+                                         "detachment_prefactor": detachment_prefactor,
+                                         "hardness": hardness},
                                "solve_contact")
+    hardness = kw.get("hardness")
     e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
     energy_correction, detachment_prefactor = kw["energy_correction"], kw["detachment_prefactor"]
     method = check_method(method)
@@ -429,6 +511,9 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
                                     energy_correction)
     theory, theory_gamma = check_theory(theory, theory_gamma)
+    if hardness is not None:
+        return _solve_contact_yield(surface, pressure, zeta, e, float(dg), method, theory,
+                                    check_hardness(hardness))
     if theory != "persson01":
         check_theory_scene(theory, float(dg))
         if method not in ("auto", "analytic"):

@@ -78,6 +78,11 @@ class DiffusionResult:
     timings : dict -- seconds spent (``solve``; ``compile`` when this call compiled).
     counts : (n_p, 3) int or None -- work of a compiled method per pressure: nodes (or time
         nodes of "bnr"), steps, node-steps (kernel evaluations of "bnr").
+    plastic_area : (n_p, n_t) -- area absorbed at the yield wall sigma_y (zeros without
+        one); area + plastic_area + detached_area == 1. [-]
+    plastic_load : (n_p, n_t) -- int sigma_y dA_pl, the load the yielded area carries
+        (load + plastic_load + detached_load == pressure with a yield wall). [Pa]
+    sigma_y : float or None -- the yield wall (a constant in this version). [Pa]
     """
 
     G: np.ndarray
@@ -94,6 +99,14 @@ class DiffusionResult:
     message: str
     timings: dict = field(default_factory=dict)
     counts: np.ndarray | None = None
+    plastic_area: np.ndarray | None = None
+    plastic_load: np.ndarray | None = None
+    sigma_y: float | None = None
+
+    def __post_init__(self):
+        for name in ("plastic_area", "plastic_load"):
+            if getattr(self, name) is None:
+                object.__setattr__(self, name, np.zeros(np.shape(self.area)))
 
     def __repr__(self) -> str:
         """A few lines (method, shapes, status, ranges), not every array."""
@@ -160,6 +173,13 @@ class ContactResult:
         "yp08", "wm17", "xu24" (see :mod:`persson_fast.theories`).
     theory_gamma : float or None -- the gamma the corrected theory ran with (its published
         default when none was given); None for "persson01". [-]
+    elastic_area, plastic_area : (n_p,) -- with a yield wall (``hardness``): the elastic
+        and the yielded (plastically deformed) fractions of A0 at zeta1; ``area`` is their
+        sum, the real contact area (both parts are in contact). None without one. [-]
+    plastic_area_zeta : (n_p, n_z) -- A_pl(zeta)/A0 (with a yield wall). [-]
+    hardness : float or None -- the constant yield stress sigma_Y of the solve. [Pa]
+    load : with a yield wall, the load of the elastic part, int sigma P dsigma
+        = p - hardness * plastic_area (the yielded area carries the rest). [Pa]
     """
 
     pressure: np.ndarray
@@ -189,6 +209,10 @@ class ContactResult:
     mean_contact_stress: np.ndarray | None = None
     theory: str = "persson01"
     theory_gamma: float | None = None
+    elastic_area: np.ndarray | None = None
+    plastic_area: np.ndarray | None = None
+    plastic_area_zeta: np.ndarray | None = None
+    hardness: float | None = None
     #: a callable pressure -> (separation, stiffness, elastic_energy, seconds) for a scene
     #: whose separation is served (see :func:`persson_fast.separation.contact_fields`), or
     #: the reason (a str) why it is not; set by solve_contact
@@ -242,6 +266,9 @@ class ContactResult:
                          f"residual max {_largest(residual):.3g}")
         if self.theory != "persson01":
             lines.append(f"  theory          {self.theory} (gamma = {self.theory_gamma:.6g})")
+        if self.hardness is not None:
+            lines.append(f"  yield wall      hardness {self.hardness:.6g} Pa; area = elastic + "
+                         f"plastic; plastic_area {_span(self.plastic_area)}")
         lines.append(f"  error_estimate  max {_largest(self.error_estimate):.3g}; "
                      f"timings: {_timings(self.timings)}>")
         return "\n".join(lines)

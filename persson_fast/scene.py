@@ -156,8 +156,10 @@ class Scene:
         gamma_S of S = gamma_S + (1 - gamma_S) P^2, in [0, 1]; None: S = 1. [-]
     detachment_prefactor : float
         beta of seed Eq. 8 (default ``DETACHMENT_PREFACTOR`` = 1/sqrt 2). [-]
-    hardness : None
-        The yield wall sigma_Y(zeta); not available in this version (only None is accepted).
+    hardness : float or None
+        The yield wall: a constant penetration hardness sigma_Y > 0 [Pa] (without adhesion;
+        see :mod:`persson_fast.plasticity`), or None (default, elastic). A scale-dependent
+        hardness (callable or table) is not available in this version (a ValueError says so).
 
     The values are validated on construction (the rules of :func:`persson_fast.solve_contact`,
     including that the scene stays finite in float64) and stored as floats.
@@ -173,11 +175,14 @@ class Scene:
     hardness: object = None
 
     def __post_init__(self):
-        if self.hardness is not None:
-            raise ValueError(f"hardness (the yield wall) is not available in this version; "
-                             f"use hardness=None; got hardness = {self.hardness!r}")
+        from .plasticity import NOT_AVAILABLE, check_hardness
+
+        object.__setattr__(self, "hardness", check_hardness(self.hardness))
         e, dg, beta = _check_scene_args(self.surface, self.e_star, self.work_of_adhesion,
                                         self.detachment_prefactor, self.energy_correction)
+        if self.hardness is not None and dg > 0:
+            raise ValueError(f"hardness with work_of_adhesion > 0: {NOT_AVAILABLE}; got "
+                             f"hardness = {self.hardness!r} and work_of_adhesion = {dg!r}")
         object.__setattr__(self, "e_star", e)
         object.__setattr__(self, "work_of_adhesion", dg)
         object.__setattr__(self, "detachment_prefactor", beta)
@@ -192,14 +197,20 @@ class Scene:
     def keywords(self) -> dict:
         """The scene as the keywords of :func:`persson_fast.solve_contact` (all but the
         surface)."""
-        return {"e_star": self.e_star, "work_of_adhesion": self.work_of_adhesion,
-                "energy_correction": self.energy_correction,
-                "detachment_prefactor": self.detachment_prefactor}
+        out = {"e_star": self.e_star, "work_of_adhesion": self.work_of_adhesion,
+               "energy_correction": self.energy_correction,
+               "detachment_prefactor": self.detachment_prefactor}
+        if self.hardness is not None:
+            out["hardness"] = self.hardness
+        return out
 
 
 #: the keyword defaults of the scene arguments in the entry points' signatures
 SCENE_DEFAULTS = {"e_star": None, "work_of_adhesion": 0.0, "energy_correction": None,
-                  "detachment_prefactor": DETACHMENT_PREFACTOR}
+                  "detachment_prefactor": DETACHMENT_PREFACTOR, "hardness": None}
+
+#: the entry points that take a Scene with a yield wall (hardness)
+TAKES_HARDNESS = ("solve_contact",)
 
 
 def unpack_scene(surface, given: dict, where: str):
@@ -214,6 +225,12 @@ def unpack_scene(surface, given: dict, where: str):
         if clash:
             raise ValueError(f"{where}: give the scene's parameters either in the Scene or as "
                              f"keywords, not both; got a Scene and {', '.join(clash)}")
+        if surface.hardness is not None and where not in TAKES_HARDNESS:
+            takes = ", ".join(TAKES_HARDNESS) + (" takes" if len(TAKES_HARDNESS) == 1
+                                                 else " take")
+            raise ValueError(f"{where} does not take a yield wall: the Scene has hardness = "
+                             f"{surface.hardness!r} Pa (use a Scene without hardness; {takes} "
+                             f"one)")
         return surface.surface, surface.keywords()
     if given.get("e_star") is None:
         raise ValueError(f"{where}: e_star (the effective modulus E* > 0, in Pa) is required "

@@ -56,8 +56,11 @@ def test_scene_validates_once_and_is_frozen():
         pf.Scene(SA, e_star=1e9, energy_correction=1.5)
     with pytest.raises(ValueError, match="surface must be a persson_fast surface"):
         pf.Scene(object(), e_star=1e9)
-    with pytest.raises(ValueError, match="hardness"):
-        pf.Scene(SA, e_star=1e9, hardness=3e8)
+    with pytest.raises(ValueError, match="hardness must be > 0"):
+        pf.Scene(SA, e_star=1e9, hardness=0.0)
+    with pytest.raises(ValueError, match="scale-dependent yield wall"):
+        pf.Scene(SA, e_star=1e9, hardness=lambda zeta: 3e8)
+    assert pf.Scene(SA, e_star=1e9, hardness=3e8).hardness == 3e8
     s = pf.Scene(SA, e_star=1e9)
     with pytest.raises(dataclasses.FrozenInstanceError):
         s.e_star = 2e9
