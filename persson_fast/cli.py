@@ -234,6 +234,9 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--detachment-prefactor", type=float, metavar="BETA",
                    help="beta of seed Eq. 8 (default 1/sqrt 2)")
     g.add_argument("--pull-off", action="store_true", help="also compute the pull-off stress")
+    ct.add_argument("--hardness", type=float, metavar="SIGMA_Y",
+                    help="constant penetration hardness [Pa]: the yield wall; adds the "
+                         "elastic and plastic area columns (no adhesion)")
     ct.add_argument("--separation", action="store_true",
                     help="also print (and write to --csv) the mean interfacial separation u "
                          "[m], the contact stiffness K = -dp/du [Pa/m] and the stored elastic "
@@ -259,8 +262,9 @@ def build_parser() -> argparse.ArgumentParser:
     ct.add_argument("--csv", metavar="FILE",
                     help="also write the table to this CSV file (replaced if it exists); "
                          "columns: pressure_Pa, area, force_per_contact_area_Pa, "
-                         "compression_per_contact_area_Pa, status[, separation_m, "
-                         "stiffness_Pa_per_m, elastic_energy_J_per_m2][, pull_off_stress_Pa]")
+                         "compression_per_contact_area_Pa, status[, elastic_area, "
+                         "plastic_area][, separation_m, stiffness_Pa_per_m, "
+                         "elastic_energy_J_per_m2][, pull_off_stress_Pa]")
 
     sub.add_parser("info", help="versions, threads and kernel compile time",
                    description="Print versions and threads, then compile (or load from the "
@@ -550,7 +554,7 @@ def _resolve_contact(args) -> dict:
     cfg = _load_toml(args.config) if args.config else {}
     known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
                  "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off",
-                 "theory", "theory_gamma", "separation"}
+                 "theory", "theory_gamma", "separation", "hardness"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -631,6 +635,9 @@ def _resolve_contact(args) -> dict:
             adhesion[key] = value
     want_pull_off = bool(args.pull_off or cfg.get("pull_off", False))
     want_separation = bool(args.separation or cfg.get("separation", False))
+    hardness = args.hardness
+    if hardness is None and "hardness" in cfg:
+        hardness = _number(cfg["hardness"], "hardness")
     theory = {}
     name = args.theory or cfg.get("theory")
     if name is not None:
@@ -644,7 +651,8 @@ def _resolve_contact(args) -> dict:
         theory["theory_gamma"] = gamma
     return {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
             "method": method, "rtol": rtol, "csv": csv_path, "adhesion": adhesion,
-            "pull_off": want_pull_off, "theory": theory, "separation": want_separation}
+            "pull_off": want_pull_off, "theory": theory, "separation": want_separation,
+            "hardness": hardness}
 
 
 def _pressure_range(pmin, pmax, n) -> np.ndarray:
@@ -697,13 +705,15 @@ def _cmd_contact(args) -> int:
     surface = _make_surface(s["model"], s["params"])
     e_star = s["e_star"]
     if s["separation"] and (s["adhesion"].get("work_of_adhesion", 0.0) > 0
-                            or s["theory"].get("theory", "persson01") != "persson01"):
-        raise CommandError("--separation is available for scenes without adhesion and the "
-                           "original theory (persson01) only: the separation is not derived "
-                           "with adhesion or the corrected theories here")
+                            or s["theory"].get("theory", "persson01") != "persson01"
+                            or s["hardness"] is not None):
+        raise CommandError("--separation is available for elastic scenes without adhesion and "
+                           "the original theory (persson01) only: the separation is not "
+                           "derived with adhesion, a yield wall or the corrected theories here")
     t0 = time.perf_counter()
+    yield_wall = {} if s["hardness"] is None else {"hardness": s["hardness"]}
     res = pf.solve_contact(surface, s["pressure"], e_star=e_star, method=s["method"],
-                           rtol=s["rtol"], **s["adhesion"], **s["theory"])
+                           rtol=s["rtol"], **s["adhesion"], **s["theory"], **yield_wall)
     elapsed = time.perf_counter() - t0
     sigma_c = None
     slope = surface.slope_rms()
@@ -720,18 +730,23 @@ def _cmd_contact(args) -> int:
     if res.theory != "persson01":
         print(f"area theory: {res.theory}, gamma = {res.theory_gamma:g}")
     extra = {}
+    if yield_wall:
+        print(f"yield wall: constant hardness {s['hardness']:.5g} Pa; A/A0 = elastic + plastic")
+        extra = {"elastic_area": res.elastic_area, "plastic_area": res.plastic_area}
     if s["separation"]:
         try:
-            extra = {"separation_m": res.separation, "stiffness_Pa_per_m": res.stiffness,
-                     "elastic_energy_J_per_m2": res.elastic_energy}
+            extra.update({"separation_m": res.separation, "stiffness_Pa_per_m": res.stiffness,
+                          "elastic_energy_J_per_m2": res.elastic_energy})
         except ValueError as exc:
             raise CommandError(f"--separation: {exc}") from None
         print(f"separation: closed form (Persson 2007); decay length u0 = "
               f"{pf.decay_length(surface, e_star=e_star, energy_correction=s['adhesion'].get('energy_correction')):.5g} m "
               f"(p ~ exp(-u/u0) at small p)")
     head = f"{'pressure [Pa]':>14}  {'A/A0':>12}  {'mean p_c [Pa]':>13}"
-    if extra:
-        head += f"  {'u [m]':>12}  {'K [Pa/m]':>12}  {'U_el [J/m^2]':>12}"
+    titles = {"elastic_area": "A_el/A0", "plastic_area": "A_pl/A0", "separation_m": "u [m]",
+              "stiffness_Pa_per_m": "K [Pa/m]", "elastic_energy_J_per_m2": "U_el [J/m^2]"}
+    for key in extra:
+        head += f"  {titles[key]:>12}"
     print(head + "  status")
     for i, (p, a, mp, st) in enumerate(zip(res.pressure, res.area, res.mean_contact_pressure,
                                            res.status)):

@@ -74,19 +74,24 @@ from .api import solve_contact
 from .scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, default_zeta, unpack_scene
 from .theories import check_theory, check_theory_scene
 from .methods import METHODS
+from .plasticity import NOT_AVAILABLE, check_hardness
 from .surfaces import Surface
 
 __all__ = ["scan", "solve_chunk", "ScanWarning", "SCENE_ERROR", "SOLVE_PARAMETERS",
            "PARAMETER_UNITS"]
 
 #: parameters that go to :func:`solve_contact` / :func:`pull_off` rather than to the surface
-SOLVE_PARAMETERS = ("e_star", "work_of_adhesion", "energy_correction", "detachment_prefactor")
+SOLVE_PARAMETERS = ("e_star", "work_of_adhesion", "energy_correction", "detachment_prefactor",
+                    "hardness")
+#: solve parameters where None (NaN in a coordinate) means "none"
+_NONE_ALLOWED = ("energy_correction", "hardness")
 
 _SOLVE_DEFAULTS = {
     "e_star": None,
     "work_of_adhesion": 0.0,
     "energy_correction": None,
     "detachment_prefactor": DETACHMENT_PREFACTOR,
+    "hardness": None,
 }
 
 #: units of the parameters of the package's surface models and of the solve, for ``attrs``
@@ -95,6 +100,7 @@ PARAMETER_UNITS = {
     "work_of_adhesion": "J/m^2",
     "energy_correction": "-",
     "detachment_prefactor": "-",
+    "hardness": "Pa",
     "hurst": "-",
     "q0": "1/m",
     "q1": "1/m",
@@ -184,6 +190,9 @@ def _solve_scene(surface, solve_kw, pressure, options):
     if options["profiles"]:
         for name in ("area_zeta", "sigma_a", "gamma_eff"):
             out[name] = np.zeros((n_p, n_z))
+    if options.get("yield_wall"):
+        out["elastic_area"] = np.zeros(n_p)
+        out["plastic_area"] = np.zeros(n_p)
     if options.get("separation"):
         out["separation"] = np.full(n_p, np.inf)
         out["stiffness"] = np.zeros(n_p)
@@ -195,7 +204,8 @@ def _solve_scene(surface, solve_kw, pressure, options):
                               **options.get("theory", {}), **solve_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
             for name in ("area", "mean_contact_pressure", "error_estimate", "area_zeta",
-                         "sigma_a", "gamma_eff", "separation", "stiffness", "elastic_energy"):
+                         "sigma_a", "gamma_eff", "separation", "stiffness", "elastic_energy",
+                         "elastic_area", "plastic_area"):
                 if name in out:
                     out[name][:] = np.nan
             out["status"][:] = SCENE_ERROR
@@ -209,6 +219,10 @@ def _solve_scene(surface, solve_kw, pressure, options):
             out["error_estimate"][rows] = r.error_estimate
             out["status"][rows] = r.status
             out["method"] = str(r.method)
+            if options.get("yield_wall"):
+                plastic = r.plastic_area if r.plastic_area is not None else 0.0
+                out["plastic_area"][rows] = plastic
+                out["elastic_area"][rows] = r.area - plastic
             if options.get("separation"):
                 out["separation"][rows] = r.separation
                 out["stiffness"][rows] = r.stiffness
@@ -231,8 +245,11 @@ def _solve_scene(surface, solve_kw, pressure, options):
             # of these filter changes between threads)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)
+                if solve_kw.get("hardness") is not None:
+                    raise ValueError("pull_off with a yield wall (hardness) is not available")
+                adhesive_kw = {k: v for k, v in solve_kw.items() if k != "hardness"}
                 sigma_c, info = _pull_off(surface, rtol=options["pull_off_rtol"],
-                                          full_output=True, bracket=False, **solve_kw)
+                                          full_output=True, bracket=False, **adhesive_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
             out["pull_off"] = out["pull_off_error"] = math.nan
             failures.append(_failure("pull_off", exc))
@@ -305,7 +322,7 @@ def _check_values(name, values):
     """One entry of ``params``: (is_dimension, coordinate array, values to pass on)."""
     label = f"params[{name!r}]"
     if isinstance(values, (str, bytes)) or np.ndim(values) == 0:
-        if name == "energy_correction" and values is None:
+        if name in _NONE_ALLOWED and values is None:
             return False, np.array(np.nan), [None]
         arr = np.asarray(values)
         if arr.dtype.kind in "iuf":
@@ -316,7 +333,7 @@ def _check_values(name, values):
     except TypeError as exc:
         raise ValueError(f"{label} must be a scalar or a 1-D sequence of values; "
                          f"got {values!r}") from exc
-    if name == "energy_correction":
+    if name in _NONE_ALLOWED:
         raw = [math.nan if v is None else v for v in raw]
     arr = np.asarray(raw)
     if arr.ndim != 1:
@@ -327,7 +344,7 @@ def _check_values(name, values):
     if arr.dtype.kind in "iuf":
         values_out = arr.tolist()
         finite = np.isfinite(arr.astype(float))
-        if name == "energy_correction":
+        if name in _NONE_ALLOWED:
             values_out = [None if math.isnan(v) else v for v in values_out]
         elif not np.all(finite):
             i = int(np.argmin(finite))
@@ -352,6 +369,10 @@ def _check_values(name, values):
 
 def _check_solve_value(name, value, label):
     """Validate one value of a solve parameter; return it as a float (or None)."""
+    if name == "hardness":
+        if value is None or (isinstance(value, float) and math.isnan(value)):
+            return None
+        return check_hardness(value, label)
     if name == "energy_correction":
         if value is None:
             return None
@@ -748,7 +769,8 @@ def _open_client(client):
 def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
          detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None, profiles=False,
          pull_off=False, pull_off_rtol=None, client=None, chunks=None, workers=None,
-         progress=None, theory="persson01", theory_gamma=None, separation=False):
+         progress=None, theory="persson01", theory_gamma=None, separation=False,
+         hardness=None):
     """Contact area over a grid of scenes crossed with nominal pressures.
 
     Parameters
@@ -819,6 +841,11 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         the default, or a corrected one, "yp08", "wm17", "xu24", for scenes without
         adhesion) and its gamma (None: the published default). Held fixed over the scan and
         recorded in ``attrs``; to compare theories, scan once per theory. [-]
+    hardness : float or None
+        The yield wall of every scene, unless scanned in ``params`` (values: a constant
+        hardness [Pa], or None / NaN for none; see ``solve_contact(hardness=...)``). With a
+        yield wall anywhere in the scan the dataset has ``elastic_area`` and
+        ``plastic_area`` ((..., pressure); ``area`` is their sum).
     separation : bool
         Also return the mean interfacial separation, the contact stiffness and the stored
         elastic energy of every scene and pressure (scenes without adhesion, theory
@@ -889,8 +916,10 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         surface, kw = unpack_scene(surface, {"e_star": e_star,
                                              "work_of_adhesion": work_of_adhesion,
                                              "energy_correction": energy_correction,
-                                             "detachment_prefactor": detachment_prefactor},
+                                             "detachment_prefactor": detachment_prefactor,
+                                             "hardness": hardness},
                                    "scan")
+        hardness = kw.get("hardness")
         e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
         energy_correction = kw["energy_correction"]
         detachment_prefactor = kw["detachment_prefactor"]
@@ -899,7 +928,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
 
     solve_keywords = {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
                       "energy_correction": energy_correction,
-                      "detachment_prefactor": detachment_prefactor}
+                      "detachment_prefactor": detachment_prefactor, "hardness": hardness}
     if not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method must be one of {', '.join(repr(m) for m in METHODS)}; "
                          f"got method = {method!r}")
@@ -924,6 +953,23 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     if theory != "persson01" and any(adhesive):
         i = adhesive.index(True)
         check_theory_scene(theory, grid.scenes[i][2]["work_of_adhesion"])
+    yielding = [kw.get("hardness") is not None for _, _, kw in grid.scenes]
+    if any(yielding):
+        i = yielding.index(True)
+        j = next((k for k in range(len(adhesive)) if adhesive[k] and yielding[k]), None)
+        if j is not None:
+            raise ValueError(f"the scene {grid.labels[j]} has hardness and work_of_adhesion "
+                             f"> 0: {NOT_AVAILABLE}")
+        if theory != "persson01":
+            raise ValueError(f"hardness applies to the original theory; the scene "
+                             f"{grid.labels[i]} has hardness and theory = {theory!r}")
+        if separation:
+            raise ValueError(f"separation=True needs elastic scenes: the scene "
+                             f"{grid.labels[i]} has hardness (the separation is not derived "
+                             f"with a yield wall here)")
+        if method not in ("auto", "analytic"):
+            raise ValueError(f"method {method!r} cannot carry a yield wall (hardness); use "
+                             f"'auto' or 'analytic' (the scene {grid.labels[i]} has hardness)")
     if separation and (theory != "persson01" or any(adhesive)):
         which = (f"theory = {theory!r}" if theory != "persson01" else
                  f"the scene {grid.labels[adhesive.index(True)]} has work_of_adhesion > 0")
@@ -939,7 +985,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
                "zeta_adhesive": zeta_adhesive, "profile_zeta": profile_zeta,
                "profiles": bool(profiles), "pull_off": bool(pull_off),
                "pull_off_rtol": pull_off_rtol, "parallel": None,
-               "separation": bool(separation),
+               "separation": bool(separation), "yield_wall": any(yielding),
                "theory": {} if theory == "persson01" else {"theory": theory,
                                                           "theory_gamma": theory_gamma}}
     if workers is None:
@@ -974,6 +1020,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     ds = _assemble(xr, grid, p, results, options, profile_zeta,
                    {"surface_model": grid.factory_name, "method": method, "rtol": rtol,
                     "theory": theory, "theory_gamma": "" if theory_gamma is None else theory_gamma,
+                    "hardness": "" if hardness is None or "hardness" in params else hardness,
                     "pull_off_rtol": pull_off_rtol if pull_off else "",
                     "execution": execution, "wall_time_s": wall,
                     "persson_fast_version": __version__})
@@ -1058,6 +1105,12 @@ def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
                            {"long_name": "detachment stress sigma_a(zeta)", "units": "Pa"})
         data["gamma_eff"] = (per_z, stack("gamma_eff", float, (n_p, n_z)),
                              {"long_name": "effective interfacial energy", "units": "J/m^2"})
+    if options.get("yield_wall"):
+        data["elastic_area"] = (per_p, stack("elastic_area", float, (n_p,)),
+                                {"long_name": "elastic contact area A_el/A0", "units": "-"})
+        data["plastic_area"] = (per_p, stack("plastic_area", float, (n_p,)),
+                                {"long_name": "yielded (plastic) contact area A_pl/A0",
+                                 "units": "-"})
     if options.get("separation"):
         data["separation"] = (per_p, stack("separation", float, (n_p,)),
                               {"long_name": "mean interfacial separation u", "units": "m"})

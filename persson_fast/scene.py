@@ -210,7 +210,7 @@ SCENE_DEFAULTS = {"e_star": None, "work_of_adhesion": 0.0, "energy_correction": 
                   "detachment_prefactor": DETACHMENT_PREFACTOR, "hardness": None}
 
 #: the entry points that take a Scene with a yield wall (hardness)
-TAKES_HARDNESS = ("solve_contact",)
+TAKES_HARDNESS = ("solve_contact", "scan")
 
 
 def unpack_scene(surface, given: dict, where: str):

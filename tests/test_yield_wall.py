@@ -116,3 +116,56 @@ def test_other_refusals():
         r.separation
     with pytest.raises(ValueError, match="both"):
         pf.solve_contact(scene, [1e6], hardness=1e9)
+
+
+def test_scan_with_hardness_axis():
+    pytest.importorskip("xarray")
+    p = np.linspace(0.0, 1e8, 4)
+    ds = pf.scan(SEED, {"hardness": [None, 3e8, 1e10]}, p, e_star=E_SEED)
+    np.testing.assert_array_equal(ds["plastic_area"].values[0], 0.0)
+    for i, h in enumerate((3e8, 1e10)):
+        r = pf.solve_contact(SEED, p, e_star=E_SEED, hardness=h)
+        np.testing.assert_array_equal(ds["area"].values[i + 1], r.area)
+        np.testing.assert_array_equal(ds["plastic_area"].values[i + 1], r.plastic_area)
+    np.testing.assert_allclose(ds["elastic_area"] + ds["plastic_area"], ds["area"], rtol=1e-15)
+    fixed = pf.scan(pf.Scene(SEED, e_star=E_SEED, hardness=3e8), {}, p)
+    assert fixed.attrs["hardness"] == 3e8
+    np.testing.assert_array_equal(fixed["plastic_area"].values,
+                                  pf.solve_contact(SEED, p, e_star=E_SEED,
+                                                   hardness=3e8).plastic_area)
+    plain = pf.scan(SEED, {"e_star": [E_SEED]}, p)
+    assert "plastic_area" not in plain
+
+
+@pytest.mark.parametrize("params, kwargs, match", [
+    ({"hardness": [3e8], "work_of_adhesion": [0.0, 0.06]}, {}, "has hardness and work_of"),
+    ({"hardness": [3e8]}, {"method": "cn"}, "cannot carry a yield wall"),
+    ({"hardness": [3e8]}, {"separation": True}, "separation=True needs elastic scenes"),
+    ({"hardness": [lambda z: 3e8]}, {}, "scale-dependent"),
+])
+def test_scan_hardness_refusals(params, kwargs, match):
+    pytest.importorskip("xarray")
+    with pytest.raises(ValueError, match=match):
+        pf.scan(SEED, params, [1e7], e_star=E_SEED, **kwargs)
+
+
+def test_cli_hardness(tmp_path, capsys):
+    import csv
+
+    from persson_fast import cli
+
+    out = tmp_path / "h.csv"
+    assert cli.main(["contact", "--surface", "capillary", "--temperature", "370",
+                     "--surface-tension", "0.04", "--q-c", "1.7e9", "--q0", "62831.85",
+                     "--q1", "7e9", "--e-star", repr(E_SEED), "--pressure", "1e6", "1e8",
+                     "--hardness", "3e8", "--csv", str(out)]) == 0
+    assert "yield wall" in capsys.readouterr().out
+    rows = list(csv.DictReader(out.open()))
+    assert float(rows[1]["plastic_area"]) > 0.3
+    assert float(rows[1]["area"]) == pytest.approx(
+        float(rows[1]["elastic_area"]) + float(rows[1]["plastic_area"]), rel=1e-15)
+    assert cli.main(["contact", "--surface", "capillary", "--temperature", "370",
+                     "--surface-tension", "0.04", "--q-c", "1.7e9", "--q0", "62831.85",
+                     "--q1", "7e9", "--e-star", "3e9", "--pressure", "1e6", "--hardness", "3e8",
+                     "--work-of-adhesion", "0.06"]) == 2
+    assert "work_of_adhesion" in capsys.readouterr().err
