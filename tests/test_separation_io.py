@@ -40,11 +40,12 @@ def test_contact_separation_from_toml(tmp_path, capsys):
     assert f"{u:12.6g}" in capsys.readouterr().out
 
 
-@pytest.mark.parametrize("flags", [["--work-of-adhesion", "0.01"], ["--theory", "yp08"]])
+@pytest.mark.parametrize("flags", [["--work-of-adhesion", "0.01"], ["--theory", "yp08"],
+                                   ["--hardness", "1e9"]])
 def test_contact_separation_refused(capsys, flags):
     assert cli.main(["contact", *SCENE, "--pressure", "1e5", "--separation", *flags]) == 2
     err = capsys.readouterr().err
-    assert "--separation is available for scenes without adhesion" in err
+    assert "--separation is available for elastic scenes without adhesion" in err
 
 
 def test_scan_separation_variables():
