@@ -21,6 +21,8 @@ WALL_THINNED = 16      # bnr: more G points than its node cap allows; solved on 
 BELOW_RESOLVED = 17    # separation: pressure below the resolved range of the quadrature near q0
 BAD_SEPARATION = 18    # contact law: the separation is not finite or not > 0
 LAW_EXTRAPOLATED = 19  # contact law: separation below the table (pressure above it), continued
+BAD_SIGMA_Y = 20       # embed.elastoplastic_area: sigma_y not finite, not of G's length, jumping
+                       # or not above -sigma_a
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -51,6 +53,9 @@ STATUS_MESSAGES = {
                    "result is less accurate than asked (error_estimate says by how much; a "
                    "kinked or fast wall converges slowly)"),
     BAD_SEPARATION: "separation must be finite and > 0 [m]; p and K are NaN",
+    BAD_SIGMA_Y: ("sigma_y must be finite, have the length of G, keep -sigma_a < sigma_y at every "
+                  "G and not jump (a repeated G with different values) [stress]; nothing "
+                  "solved"),
     LAW_EXTRAPOLATED: ("separation below the contact law's table (a pressure above its range): p "
                        "and K are a continuation with the last slope, not a result (build the "
                        "law with a larger pressure_max)"),

@@ -1,0 +1,654 @@
+"""Stress diffusion between two absorbing walls, one pressure at a time (``@njit``).
+
+Problem, in diffusion time G (Persson, J. Chem. Phys. 115, 3840 (2001); Surf. Sci. Rep. 61,
+201 (2006), elastoplastic contact with adhesion):
+
+    dP/dG = d2P/dsigma2,  P(sigma, 0) = delta(sigma - sigma0),
+    P(-sigma_a(G), G) = 0 (detachment),  P(sigma_y(G), G) = 0 (yield),
+
+with both walls piecewise linear in G between the schedule samples (the first value before
+G[0]), -sigma_a < sigma_y throughout, no jumps (a repeated G carries equal values).
+
+Scheme ("strip")
+----------------
+Everything is scaled by the strip width at G = 0, W0 = sigma_a(0) + sigma_y(0). The strip is
+mapped onto y = (sigma + sigma_a(G)) / w(G) in [0, 1], w = sigma_a + sigma_y; the density in y,
+p = w P, obeys p_G = (1/w^2) p_yy - d/dy (v p) with the frame velocity v = (sigma_a' - y w')/w.
+Space: conservative central differences on y_j = j/n, p = 0 at both walls. The wall speeds are
+the secants of their pieces (the schedule samples, kinks included, are step boundaries).
+Time: Crank-Nicolson; the first ``n_damp`` steps are two implicit-Euler half steps each
+(Rannacher start). Steps grow geometrically from the start (dt = REL_STEP G), capped at
+MAX_STEP w^2 and by the wall travel per step (a fraction 1/N_WIDTH of the profile width
+sqrt(2G)). The absorbed areas are the discrete boundary fluxes integrated by the trapezoid
+rule, so that A_el + A_pl + D = 1 holds to rounding; the absorbed loads are the fluxes times
+the walls' stresses (the load balance L + plastic_load - detached_load = sigma0 then holds to
+the discretisation error).
+
+Start: an exact solution at a small G_s. Either the free Gaussian N(sigma - sigma0; 2 G_s),
+while both walls stay >= K_FAR standard deviations away over [0, G_s], or the exact density of
+the nearer wall alone moving linearly (:func:`linear_wall_density`), while that wall is still
+on its first linear stretch and the far wall stays K_FAR standard deviations away: a start
+next to one wall does not force a narrow start (and a huge grid). Outputs at G <= G_s are the
+start family's exact values. The start profile is sampled at the nodes; what its discrete
+area misses (O(h^2) next to a wall) is booked as absorbed by the nearer wall, at the value
+that keeps the load balance exact.
+
+Error control: a ladder of runs (n, dt), (2n, dt/2), (4n, dt/4) gives two Richardson values
+R1 = (4 A_2 - A_1)/3 and R2 = (4 A_4 - A_2)/3; the returned value is R2 and the error
+estimate of the real contact area A = A_el + A_pl = 1 - D is |R2 - R1| / (2^q - 1) with
+q = EXTRAPOLATED_ORDER (that of the cn kernel), the larger un-extrapolated measure |A_4 - A_2|/3
+being taken too where the ladder is not in its asymptotic range. While the largest estimate
+exceeds rtol A + RTOL_ATOL (or that of A_el or A_pl does: their errors partly cancel in A)
+the ladder is refined (a run with twice the nodes and half the
+steps added, the coarsest dropped), up to MAX_REFINE times and the node and work caps; a result
+that still misses is flagged RTOL_NOT_MET (GRID_CAP where a cap stopped the refinement).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import njit_serial, njit_sweeps, prange
+from . import status as st
+from .special import linear_wall_area_moment, linear_wall_density
+from .tridiag import thomas
+
+# --- constants of the scheme (lengths in units of W0, diffusion times in W0^2) -----------
+N_DAMP = 1              # default implicit-Euler half-step pairs at the start of each run
+K_FAR = 8.0             # a wall ignored by the start stays this many start std away
+N_BASE = 60             # coarse intervals across the strip at rtol = 1e-6
+R_STD = 6.0             # coarse intervals per start standard deviation (at least)
+PECLET_MAX = 0.25       # largest coarse cell Peclet number of the wall drift, at rtol = 1e-6
+REL_STEP = 0.08         # coarse step / G early on (geometric steps), at rtol = 1e-6
+MAX_STEP = 4e-3         # coarse step cap / w^2 (late, uniform steps), at rtol = 1e-6
+N_WIDTH = 10.0          # coarse steps per profile width sqrt(2G) travelled by a wall
+LEVEL0_SCALE = 0.25     # resolution scale of level 0 of the explicit ladder
+N_CAP = 16384           # most intervals of any run (the coarse grid: N_CAP / 4)
+WORK_MAX = 2e8          # most node-steps of all the runs of one solve
+MAX_REFINE = 3          # a-posteriori refinements at most
+EXTRAPOLATED_ORDER = 3.0  # order assumed for the error of the extrapolated values
+ASYMPTOTIC_SLACK = 2.0  # successive ladder differences within this factor of 4: asymptotic
+RTOL_ATOL = 1e-12       # absolute part of the accuracy contract |dA| <= rtol A + RTOL_ATOL
+NEG_TOL = 1e-3          # min p < -NEG_TOL max p at a record: NEGATIVE_DENSITY
+
+# output slots
+EL, LOAD, PL, PL_LOAD, DET, DET_LOAD = 0, 1, 2, 3, 4, 5
+N_OUT = 6
+# start kinds
+START_FREE, START_LOWER, START_UPPER = 0, 1, 2
+
+
+@njit_serial
+def _wall_at(G_k, v_k, k, g):
+    """Wall value at g on piece k = [G_k[k-1], G_k[k]] (exact at its ends)."""
+    g0 = G_k[k - 1]
+    g1 = G_k[k]
+    if g >= g1 or g1 <= g0:
+        return v_k[k]
+    if g <= g0:
+        return v_k[k - 1]
+    return v_k[k - 1] + (v_k[k] - v_k[k - 1]) * (g - g0) / (g1 - g0)
+
+
+@njit_serial
+def _min_gap(G_k, dist_k, g):
+    """Smallest value over [0, g] of a piecewise-linear distance given at the samples."""
+    m = dist_k[0]
+    n = G_k.shape[0]
+    for k in range(1, n):
+        if G_k[k] > g:
+            # the piece k holds g: its value at g (linear, so the ends bound it)
+            if G_k[k] > G_k[k - 1]:
+                d = dist_k[k - 1] + (dist_k[k] - dist_k[k - 1]) * (g - G_k[k - 1]) / (
+                    G_k[k] - G_k[k - 1])
+                if d < m:
+                    m = d
+            return m
+        if dist_k[k] < m:
+            m = dist_k[k]
+    return m
+
+
+@njit_serial
+def _far_limit(G_k, dist_k, g_hi):
+    """Largest g <= g_hi with min over [0, g] of the distance >= K_FAR sqrt(2 g)."""
+    if _min_gap(G_k, dist_k, g_hi) >= K_FAR * math.sqrt(2.0 * g_hi):
+        return g_hi
+    lo = 0.0
+    hi = g_hi
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if _min_gap(G_k, dist_k, mid) >= K_FAR * math.sqrt(2.0 * mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit_serial
+def _linear_end(G_k, v_k):
+    """End of the first linear stretch of a wall from G = 0 (collinear pieces joined), and
+    its slope."""
+    n = G_k.shape[0]
+    k = 1
+    while k < n and G_k[k] <= G_k[0]:
+        k += 1
+    if k >= n:
+        return np.inf, 0.0
+    b = (v_k[k] - v_k[0]) / (G_k[k] - G_k[0])
+    end = G_k[k]
+    k += 1
+    while k < n:
+        if G_k[k] > G_k[k - 1]:
+            pred = v_k[0] + b * G_k[k]
+            if abs(v_k[k] - pred) > 1e-13 * (1.0 + abs(pred)):
+                return end, b
+            end = G_k[k]
+        k += 1
+    return np.inf, b
+
+
+@njit_serial
+def _exact_start(kind, sig0, y0, b, g, sa, sy, res):
+    """The start family's exact outputs at g (walls sa, sy there) into res[0:6]."""
+    for q in range(N_OUT):
+        res[q] = 0.0
+    if kind == START_FREE or g <= 0.0:
+        res[EL] = 1.0
+        res[LOAD] = sig0
+        return
+    a, m1 = linear_wall_area_moment(y0, b, g)
+    res[EL] = a
+    if kind == START_LOWER:       # y = sigma + sa
+        load = m1 - sa * a
+        res[LOAD] = load
+        res[DET] = 1.0 - a
+        res[DET_LOAD] = load - sig0
+    else:                         # y = sy - sigma
+        load = sy * a - m1
+        res[LOAD] = load
+        res[PL] = 1.0 - a
+        res[PL_LOAD] = sig0 - load
+
+
+@njit_serial
+def _step_size(g, w, speed, rel, max_step, n_width):
+    dt = rel * g
+    if dt > max_step * w * w:
+        dt = max_step * w * w
+    if speed > 0.0:
+        dt_w = math.sqrt(2.0 * g) / (n_width * speed)
+        if dt < dt_w:
+            return dt
+        return dt_w
+    return dt
+
+
+@njit_serial
+def _plan(G_k, sa_k, sy_k, speed_k, k_first, g_start, rel, max_step, n_width, gs, piece, rec):
+    """Coarse step boundaries from g_start through every sample after it.
+
+    Returns the number of steps; with non-empty ``gs`` also fills the boundaries ``gs``, the
+    piece of each step ``piece`` and, for each sample k >= k_first, the index ``rec[k]`` of
+    its boundary. With empty ``gs`` it only counts.
+    """
+    fill = gs.shape[0] > 0
+    m = 0
+    g = g_start
+    if fill:
+        gs[0] = g
+    n = G_k.shape[0]
+    for k in range(k_first, n):
+        b = G_k[k]
+        if b > g:
+            while True:
+                w = _wall_at(G_k, sa_k, k, g) + _wall_at(G_k, sy_k, k, g)
+                dt = _step_size(g, w, speed_k[k], rel, max_step, n_width)
+                if g + 1.5 * dt >= b:
+                    if b - g > dt:
+                        g = 0.5 * (g + b)
+                        if fill:
+                            piece[m] = k
+                            gs[m + 1] = g
+                        m += 1
+                    g = b
+                    if fill:
+                        piece[m] = k
+                        gs[m + 1] = g
+                    m += 1
+                    break
+                g = g + dt
+                if fill:
+                    piece[m] = k
+                    gs[m + 1] = g
+                m += 1
+        if fill:
+            rec[k] = m
+    return m
+
+
+@njit_serial
+def _assemble(w, sa_dot, w_dot, h, n, c, lo, di, up):
+    """(I - c L) on the interior nodes 1..n-1 (stored at 0..n-2) for the strip operator L at
+    width w; returns the boundary outflow coefficients (out_lo, out_up): flux = coef p_1 and
+    coef p_{n-1}."""
+    d = 1.0 / (w * w)
+    dh = d / h
+    for j in range(1, n):
+        vm = (sa_dot - (j - 0.5) * h * w_dot) / w
+        vp = (sa_dot - (j + 0.5) * h * w_dot) / w
+        i = j - 1
+        lo[i] = -c * (dh + 0.5 * vm) / h
+        di[i] = 1.0 + c * (2.0 * dh + 0.5 * (vp - vm)) / h
+        up[i] = -c * (dh - 0.5 * vp) / h
+    v_lo = (sa_dot - 0.5 * h * w_dot) / w
+    v_up = (sa_dot - (n - 0.5) * h * w_dot) / w
+    return dh - 0.5 * v_lo, dh + 0.5 * v_up
+
+
+@njit_serial
+def _explicit(p, w, sa_dot, w_dot, h, n, c, rhs):
+    """rhs = (I + c L) p on the interior nodes (p holds all n+1 nodes, zero at the ends)."""
+    d = 1.0 / (w * w)
+    dh = d / h
+    for j in range(1, n):
+        vm = (sa_dot - (j - 0.5) * h * w_dot) / w
+        vp = (sa_dot - (j + 0.5) * h * w_dot) / w
+        lp = ((dh + 0.5 * vm) * p[j - 1] - (2.0 * dh + 0.5 * (vp - vm)) * p[j]
+              + (dh - 0.5 * vp) * p[j + 1]) / h
+        rhs[j - 1] = p[j] + c * lp
+    v_lo = (sa_dot - 0.5 * h * w_dot) / w
+    v_up = (sa_dot - (n - 0.5) * h * w_dot) / w
+    return dh - 0.5 * v_lo, dh + 0.5 * v_up
+
+
+@njit_serial
+def _march(G_k, sa_k, sy_k, gs, piece, rec, k_first, n_sub, n_damp, n, kind, sig0, y0, b0,
+           g_s, p, lo, di, up, rhs, scratch, res):
+    """One run on n intervals, every coarse step cut into n_sub equal steps, the first
+    n_damp (of the fine steps) damped. Writes res[q, k] for the samples k >= k_first;
+    returns a status (OK, NEGATIVE_DENSITY, NONFINITE)."""
+    status = st.OK
+    h = 1.0 / n
+    k0 = piece[0]
+    sa = _wall_at(G_k, sa_k, k0, g_s)
+    sy = _wall_at(G_k, sy_k, k0, g_s)
+    w = sa + sy
+    p[0] = 0.0
+    p[n] = 0.0
+    area = 0.0
+    load = 0.0
+    for j in range(1, n):
+        sig = j * h * w - sa
+        if kind == START_FREE:
+            x = sig - sig0
+            v = math.exp(-x * x / (4.0 * g_s)) / math.sqrt(4.0 * math.pi * g_s)
+        elif kind == START_LOWER:
+            v = linear_wall_density(sig + sa, y0, b0, g_s)
+        else:
+            v = linear_wall_density(sy - sig, y0, b0, g_s)
+        p[j] = w * v
+        area += p[j]
+        load += sig * p[j]
+    area *= h
+    load *= h
+    pl = 0.0
+    pl_load = 0.0
+    det = 0.0
+    det_load = 0.0
+    # what the sampled start misses goes to the nearer wall, keeping both balances exact
+    if kind == START_UPPER:
+        pl = 1.0 - area
+        pl_load = sig0 - load
+    else:
+        det = 1.0 - area
+        det_load = load - sig0
+    m = piece.shape[0]
+    n_in = n - 1
+    kr = k_first
+    n_rec = G_k.shape[0]
+    i_fine = 0
+    for i in range(m):
+        k = piece[i]
+        ga = gs[i]
+        gb = gs[i + 1]
+        dg = G_k[k] - G_k[k - 1]
+        sa_dot = (sa_k[k] - sa_k[k - 1]) / dg
+        w_dot = (sa_k[k] + sy_k[k] - sa_k[k - 1] - sy_k[k - 1]) / dg
+        for s in range(n_sub):
+            g0 = ga + (gb - ga) * s / n_sub
+            g1 = gb if s == n_sub - 1 else ga + (gb - ga) * (s + 1) / n_sub
+            dt = g1 - g0
+            sa0 = _wall_at(G_k, sa_k, k, g0)
+            sy0 = _wall_at(G_k, sy_k, k, g0)
+            sa1 = _wall_at(G_k, sa_k, k, g1)
+            sy1 = _wall_at(G_k, sy_k, k, g1)
+            if i_fine < n_damp:
+                gm = 0.5 * (g0 + g1)
+                sam = _wall_at(G_k, sa_k, k, gm)
+                sym = _wall_at(G_k, sy_k, k, gm)
+                for half in range(2):
+                    c = (gm - g0) if half == 0 else (g1 - gm)
+                    sab = sam if half == 0 else sa1
+                    syb = sym if half == 0 else sy1
+                    o_lo, o_up = _assemble(sab + syb, sa_dot, w_dot, h, n, c, lo, di, up)
+                    for j in range(n_in):
+                        rhs[j] = p[j + 1]
+                    thomas(lo[:n_in], di[:n_in], up[:n_in], rhs[:n_in], scratch[:n_in],
+                           p[1:n])
+                    f_lo = o_lo * p[1]
+                    f_up = o_up * p[n - 1]
+                    det += c * f_lo
+                    pl += c * f_up
+                    det_load += c * sab * f_lo
+                    pl_load += c * syb * f_up
+            else:
+                c = 0.5 * dt
+                o_lo0, o_up0 = _explicit(p, sa0 + sy0, sa_dot, w_dot, h, n, c, rhs)
+                f_lo0 = o_lo0 * p[1]
+                f_up0 = o_up0 * p[n - 1]
+                o_lo1, o_up1 = _assemble(sa1 + sy1, sa_dot, w_dot, h, n, c, lo, di, up)
+                thomas(lo[:n_in], di[:n_in], up[:n_in], rhs[:n_in], scratch[:n_in], p[1:n])
+                f_lo1 = o_lo1 * p[1]
+                f_up1 = o_up1 * p[n - 1]
+                det += c * (f_lo0 + f_lo1)
+                pl += c * (f_up0 + f_up1)
+                det_load += c * (sa0 * f_lo0 + sa1 * f_lo1)
+                pl_load += c * (sy0 * f_up0 + sy1 * f_up1)
+            i_fine += 1
+        # records at the boundary i + 1
+        if kr < n_rec and rec[kr] == i + 1:
+            sa = _wall_at(G_k, sa_k, k, gb)
+            sy = _wall_at(G_k, sy_k, k, gb)
+            w = sa + sy
+            area = 0.0
+            load = 0.0
+            p_min = 0.0
+            p_max = 0.0
+            for j in range(1, n):
+                pj = p[j]
+                area += pj
+                load += (j * h * w - sa) * pj
+                if pj < p_min:
+                    p_min = pj
+                if pj > p_max:
+                    p_max = pj
+            if p_min < -NEG_TOL * p_max and status == st.OK:
+                status = st.NEGATIVE_DENSITY
+            if not (math.isfinite(area) and math.isfinite(det) and math.isfinite(pl)):
+                status = st.NONFINITE
+            while kr < n_rec and rec[kr] == i + 1:
+                res[EL, kr] = area * h
+                res[LOAD, kr] = load * h
+                res[PL, kr] = pl
+                res[PL_LOAD, kr] = pl_load
+                res[DET, kr] = det
+                res[DET_LOAD, kr] = det_load
+                kr += 1
+    return status
+
+
+@njit_serial
+def _ladder_error(a, b, c):
+    """Error estimate of the extrapolated value (4 c - b)/3 of one output from the runs
+    a (n), b (2n), c (4n) (see the module docstring)."""
+    q = 4.0
+    d1 = b - a
+    d2 = c - b
+    e_lo = abs(4.0 * d2 - d1) / (3.0 * (2.0 ** EXTRAPOLATED_ORDER - 1.0))
+    e_hi = abs(d2) / 3.0
+    asym = d1 * d2 > 0.0 and abs(d1) <= q * ASYMPTOTIC_SLACK * abs(d2) and \
+        q * abs(d2) <= ASYMPTOTIC_SLACK * abs(d1)
+    return e_lo if asym else max(e_lo, e_hi)
+
+
+@njit_serial
+def _estimate(r_a, r_b, r_c, k_first, rtol, est):
+    """Error estimate of the real contact area A = A_el + A_pl = 1 - D of R2 = (4 C - B)/3
+    from the runs A (n), B (2n), C (4n); True when it, and the estimates of the two parts
+    A_el and A_pl (whose errors partly cancel in A), meet rtol A + RTOL_ATOL at every sample
+    (or rtol <= 0)."""
+    met = True
+    n = est.shape[0]
+    for k in range(k_first, n):
+        e = _ladder_error(r_a[DET, k], r_b[DET, k], r_c[DET, k])
+        e_pl = _ladder_error(r_a[PL, k], r_b[PL, k], r_c[PL, k])
+        e_el = _ladder_error(r_a[EL, k], r_b[EL, k], r_c[EL, k])
+        if not math.isfinite(e + e_pl + e_el):
+            met = False
+            e = np.inf
+        est[k] = e
+        a = 1.0 - (r_c[DET, k] + (r_c[DET, k] - r_b[DET, k]) / 3.0)
+        if max(e, max(e_pl, e_el)) > rtol * min(max(a, 0.0), 1.0) + RTOL_ATOL:
+            met = False
+    return met or rtol <= 0.0
+
+
+@njit_serial
+def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl,
+                out_pl_load, out_det, out_det_load, out_err, counts):
+    """Two-wall diffusion of one nominal stress, with error control.
+
+    Parameters
+    ----------
+    G : (n_t,) float64 -- non-decreasing diffusion times, G[0] >= 0. [stress^2]
+    sa, sy : (n_t,) float64 -- sigma_a (lower wall at -sa) and sigma_y (upper wall) at G,
+        linear in between, sa[0], sy[0] before G[0]; sa + sy > 0. [stress]
+    sigma0 : float -- nominal stress, -sa[0] < sigma0 < sy[0]. [stress]
+    rtol : float -- target relative accuracy of the real contact area A_el + A_pl. [-]
+    level : int -- >= 0: explicit resolution (doubling per level), no refinement; -1: rtol.
+    n_damp : int -- coarse steps after the start taken as two implicit-Euler half steps.
+    out_* : (n_t,) float64 -- elastic area, load, plastic area, plastic load, detached area,
+        detached load (integral of sigma_a dD), error estimate of A_el + A_pl.
+    counts : (3,) int64 -- coarse intervals, coarse steps, refinements done.
+
+    Returns
+    -------
+    status : int -- see :mod:`persson_fast._kernels.status`.
+    """
+    nt = G.shape[0]
+    if (sa.shape[0] != nt or sy.shape[0] != nt or out_el.shape[0] != nt
+            or out_err.shape[0] != nt or counts.shape[0] < 3):
+        return st.BAD_INPUT
+    counts[0] = 0
+    counts[1] = 0
+    counts[2] = 0
+    if nt == 0:
+        return st.OK
+    scale = sa[0] + sy[0]
+    if not (scale > 0.0 and math.isfinite(scale) and math.isfinite(sigma0)):
+        return st.BAD_INPUT
+    if not (-sa[0] < sigma0 < sy[0]) or n_damp < 0:
+        return st.BAD_INPUT
+    for k in range(nt):
+        if not (math.isfinite(G[k]) and math.isfinite(sa[k]) and math.isfinite(sy[k])):
+            return st.BAD_INPUT
+        if sa[k] + sy[k] <= 0.0 or G[k] < 0.0 or (k > 0 and G[k] < G[k - 1]):
+            return st.BAD_INPUT
+    # scaled schedule with a leading point at G = 0
+    n_k = nt + 1
+    G_k = np.empty(n_k)
+    sa_k = np.empty(n_k)
+    sy_k = np.empty(n_k)
+    G_k[0] = 0.0
+    sa_k[0] = sa[0] / scale
+    sy_k[0] = sy[0] / scale
+    for k in range(nt):
+        G_k[k + 1] = G[k] / (scale * scale)
+        sa_k[k + 1] = sa[k] / scale
+        sy_k[k + 1] = sy[k] / scale
+    sig0 = sigma0 / scale
+    g_end = G_k[nt]
+    speed_k = np.zeros(n_k)
+    d_lo = np.empty(n_k)
+    d_up = np.empty(n_k)
+    for k in range(n_k):
+        d_lo[k] = sig0 + sa_k[k]
+        d_up[k] = sy_k[k] - sig0
+        if k > 0 and G_k[k] > G_k[k - 1]:
+            dg = G_k[k] - G_k[k - 1]
+            speed_k[k] = max(abs(sa_k[k] - sa_k[k - 1]), abs(sy_k[k] - sy_k[k - 1])) / dg
+    # the start: free Gaussian, or the nearer wall's exact linear solution
+    g_far_lo = _far_limit(G_k, d_lo, g_end)
+    g_far_up = _far_limit(G_k, d_up, g_end)
+    g_free = min(g_far_lo, g_far_up)
+    near_lower = d_lo[0] <= d_up[0]
+    if near_lower:
+        end_lin, b_lin = _linear_end(G_k, sa_k)
+        g_lin = min(end_lin, g_far_up)
+        y0 = d_lo[0]
+    else:
+        end_lin, b_lin = _linear_end(G_k, sy_k)
+        g_lin = min(end_lin, g_far_lo)
+        y0 = d_up[0]
+    if g_free >= g_lin:
+        kind = START_FREE
+        g_s = g_free
+    else:
+        kind = START_LOWER if near_lower else START_UPPER
+        g_s = g_lin
+    if g_s > g_end:
+        g_s = g_end
+    res0 = np.empty(N_OUT)
+    k_first = 1
+    while k_first < n_k and G_k[k_first] <= g_s:
+        _exact_start(kind, sig0, y0, b_lin, G_k[k_first], sa_k[k_first], sy_k[k_first], res0)
+        kk = k_first - 1
+        out_el[kk] = res0[EL]
+        out_load[kk] = res0[LOAD] * scale
+        out_pl[kk] = res0[PL]
+        out_pl_load[kk] = res0[PL_LOAD] * scale
+        out_det[kk] = res0[DET]
+        out_det_load[kk] = res0[DET_LOAD] * scale
+        out_err[kk] = 0.0
+        k_first += 1
+    if k_first >= n_k:
+        return st.OK
+    if not g_s > 0.0:
+        for kk in range(k_first - 1, nt):
+            out_el[kk] = np.nan
+            out_err[kk] = np.nan
+        return st.START_UNRESOLVED
+    status = st.OK
+    # resolution: a priori from rtol (or level), the start's width and the wall drift
+    if level >= 0:
+        s = LEVEL0_SCALE * 2.0 ** level
+    else:
+        s = (1e-6 / rtol) ** 0.25
+    k_s = k_first      # the piece holding g_s
+    w_s = _wall_at(G_k, sa_k, k_s, g_s) + _wall_at(G_k, sy_k, k_s, g_s)
+    std_y = math.sqrt(2.0 * g_s) / w_s
+    pe = 0.0
+    for k in range(k_s, n_k):
+        w_max = max(sa_k[k] + sy_k[k], sa_k[k - 1] + sy_k[k - 1])
+        if speed_k[k] * w_max > pe:
+            pe = speed_k[k] * w_max
+    n_f = max(N_BASE * s, R_STD * math.sqrt(s) / std_y, pe * s / PECLET_MAX, 16.0)
+    n_c = int(math.ceil(n_f))
+    if n_c > N_CAP // 4:
+        n_c = N_CAP // 4
+        status = st.START_UNRESOLVED if R_STD / std_y > N_CAP // 4 else st.GRID_CAP
+    rel = REL_STEP / s
+    max_step = MAX_STEP / s
+    n_width = N_WIDTH * s
+    empty_f = np.empty(0)
+    empty_i = np.empty(0, dtype=np.int64)
+    rec = np.zeros(n_k, dtype=np.int64)
+    m = _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, empty_f, empty_i,
+              rec)
+    work = 21.0 * (n_c + 1.0) * m
+    if work > WORK_MAX:
+        # cut the step densities (not below one step per piece), flagged
+        f = WORK_MAX / work
+        rel /= f
+        max_step /= f
+        n_width *= f
+        m = _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, empty_f,
+                  empty_i, rec)
+        status = st.GRID_CAP
+    gs = np.empty(m + 1)
+    piece = np.empty(m, dtype=np.int64)
+    _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, gs, piece, rec)
+    counts[0] = n_c
+    counts[1] = m
+    # the ladder
+    size = 4 * n_c + 1
+    p = np.empty(size)
+    lo = np.empty(size)
+    di = np.empty(size)
+    up = np.empty(size)
+    rhs = np.empty(size)
+    scratch = np.empty(size)
+    res = np.zeros((3, N_OUT, n_k))
+    run_status = np.zeros(3, dtype=np.int64)
+    est = np.zeros(n_k)
+    j = 0
+    met = True
+    work_done = 0.0
+    while True:
+        n_j = n_c << j
+        if n_j + 1 > p.shape[0]:
+            p = np.empty(n_j + 1)
+            lo = np.empty(n_j + 1)
+            di = np.empty(n_j + 1)
+            up = np.empty(n_j + 1)
+            rhs = np.empty(n_j + 1)
+            scratch = np.empty(n_j + 1)
+        slot = j % 3
+        run_status[slot] = _march(G_k, sa_k, sy_k, gs, piece, rec, k_first, np.int64(1 << j),
+                                  np.int64(n_damp), n_j, kind, sig0, y0, b_lin, g_s, p,
+                                  lo, di, up, rhs, scratch, res[slot])
+        work_done += (n_j + 1.0) * m * (1 << j)
+        if j >= 2:
+            met = _estimate(res[(j - 2) % 3], res[(j - 1) % 3], res[slot], k_first,
+                            rtol if level < 0 else 0.0, est)
+            if met:
+                break
+            if j - 2 >= MAX_REFINE:
+                if status == st.OK:
+                    status = st.RTOL_NOT_MET
+                break
+            if (n_c << (j + 1)) > N_CAP or work_done + (
+                    (n_c << (j + 1)) + 1.0) * m * (1 << (j + 1)) > WORK_MAX:
+                status = st.GRID_CAP
+                break
+        j += 1
+    counts[2] = j - 2
+    if met and status == st.GRID_CAP:
+        status = st.OK      # a capped resolution whose estimate meets rtol is fine
+    for kk in range(2):
+        s_k = run_status[(j - 1 + kk) % 3]
+        if s_k != st.OK:
+            status = s_k
+    sb = (j - 1) % 3
+    sc = j % 3
+    for k in range(k_first, n_k):
+        kk = k - 1
+        vals = np.empty(N_OUT)
+        for q in range(N_OUT):
+            vals[q] = (4.0 * res[sc, q, k] - res[sb, q, k]) / 3.0
+        out_el[kk] = vals[EL]
+        out_load[kk] = vals[LOAD] * scale
+        out_pl[kk] = vals[PL]
+        out_pl_load[kk] = vals[PL_LOAD] * scale
+        out_det[kk] = vals[DET]
+        out_det_load[kk] = vals[DET_LOAD] * scale
+        out_err[kk] = est[k]
+        if not (math.isfinite(vals[EL]) and math.isfinite(vals[DET]) and
+                math.isfinite(vals[PL]) and math.isfinite(vals[LOAD])):
+            status = st.NONFINITE
+    return status
+
+
+def _sweep(G, sa_rows, sy_rows, sigma0, rtol, level, n_damp, el, load, pl, pl_load, det,
+           det_load, err, status, counts):
+    """Solve every pressure (row). Inputs sa_rows, sy_rows (n_p, n_t), sigma0 (n_p,); outputs
+    (n_p, n_t), status (n_p,), counts (n_p, 3)."""
+    for i in prange(sigma0.shape[0]):
+        status[i] = solve_strip(G, sa_rows[i], sy_rows[i], sigma0[i], rtol, level, n_damp,
+                                el[i], load[i], pl[i], pl_load[i], det[i], det_load[i], err[i],
+                                counts[i])
+
+
+sweep_serial, sweep_parallel = njit_sweeps(_sweep)
