@@ -107,8 +107,10 @@ class Scene:
 
 
 def wall_methods():
-    """The compiled methods of METHODS (those with a sweep: they solve a prescribed wall)."""
-    return tuple(m for m, e in pf.METHODS.items() if e.get("sweep") is not None)
+    """The compiled one-wall methods of METHODS (those with a sweep: they solve a prescribed
+    wall; "strip" needs a yield wall too and is tested in tests/test_yield_scale.py)."""
+    return tuple(m for m, e in pf.METHODS.items()
+                 if e.get("sweep") is not None and not e.get("two_walls"))
 
 
 def jump_reference(G, n=200):

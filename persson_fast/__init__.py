@@ -33,6 +33,7 @@ from .surfaces import (
     seed_e_star,
     seed_scene,
 )
+from .plasticity import hardness_nix_gao, hardness_power_law, hardness_table
 from .scan import ScanWarning, scan
 from .scene import Scene
 from .separation import (SeparationResult, decay_length, pressure_at_separation,
@@ -56,6 +57,9 @@ __all__ = [
     "adhesion_zeta",
     "contact_area_no_adhesion",
     "default_zeta",
+    "hardness_nix_gao",
+    "hardness_power_law",
+    "hardness_table",
     "images_area",
     "images_density",
     "images_moments",

@@ -13,8 +13,8 @@ from ._validation import as_float_array, check_finite, check_nondecreasing, chec
 from .adhesion import solve_adhesive_contact, warm_adhesion
 from .methods import check_method, check_serves, choose_auto
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
-from .plasticity import (NOT_AVAILABLE, check_below_hardness, check_hardness,
-                         check_yield_method, constant_yield)
+from .plasticity import check_hardness
+from .yield_api import solve_yield_contact, solve_yield_diffusion
 from .separation import ADHESION_REFUSED, contact_fields, warm_separation
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep, warm_sweeps
@@ -46,6 +46,9 @@ def warmup(prange: bool = False) -> dict:
     t0 = time.perf_counter()
     warm_separation()
     timings["separation"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    solve_diffusion(np.array([0.0, 1.0]), [0.5], 0.5, sigma_y=1.0, method="strip", rtol=1e-3)
+    timings["strip"] = time.perf_counter() - t0
     return timings
 
 def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
@@ -84,7 +87,7 @@ _WALL_BLOCK_ELEMENTS = 2_000_000
 
 
 def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, method="cn",
-                    rtol=1e-6, n_damp=2, parallel=None, level=None) -> DiffusionResult:
+                    rtol=1e-6, n_damp=None, parallel=None, level=None) -> DiffusionResult:
     """Solve the stress diffusion with a prescribed absorbing wall.
 
     Parameters
@@ -103,16 +106,19 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         must return finite values of the same shape on [0, G[-1]]) is followed from G = 0 and
         sampled by :func:`persson_fast.walls.sample_wall` finely enough that its
         piecewise-linear error is part of rtol; results are still reported at G only. [Pa]
-    sigma_y : float or None
+    sigma_y : float, array_like, callable or None
         The yield wall (penetration hardness) at +sigma_y: what crosses it has yielded and
         stays in contact carrying sigma_y (``plastic_area``, ``plastic_load``; ``area`` is the
-        elastic area between the walls). In this version a constant sigma_y > 0 with
-        sigma_a = 0, served exactly by method "analytic" (and "auto"), see
-        :mod:`persson_fast.plasticity`; an array or callable sigma_y, or sigma_y with a
-        detachment wall, raises a ValueError that says why. None (default): no yield wall. [Pa]
+        elastic area between the walls). Forms as ``sigma_a``: a scalar, (n_t,) or (n_p, n_t)
+        samples (continuous: no jumps), or a vectorised callable G -> sigma_y. A constant
+        sigma_y with sigma_a = 0 is the exact series (method "analytic"; "auto" takes it);
+        every other pair of walls is solved by "strip" (see :mod:`persson_fast.strip`;
+        "auto" takes it), with rtol and ``error_estimate`` referring to the real contact
+        area area + plastic_area. The walls must keep -sigma_a < sigma_y and start with
+        -sigma_a < pressure < sigma_y. None (default): no yield wall. [Pa]
     kinks : array_like or None
-        Only with a callable sigma_a: diffusion times where the wall's slope jumps, put on
-        the schedule exactly. Kinks not declared are found by the adaptive sampling (which
+        Only with a callable wall (sigma_a, or sigma_y with "strip"): diffusion times where
+        a wall's slope jumps, put on the schedule exactly. Kinks not declared are found by the adaptive sampling (which
         puts a sample next to them, within ~1e-3 of the tolerance). A callable that jumps is
         refused (give such a wall as samples with a repeated G). [Pa^2]
     method : str
@@ -126,9 +132,10 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         Explicit resolution level >= 0 of a compiled method instead of rtol (each level
         halves the node spacing and the step, level 2 of "cn" is the rtol = 1e-6 grid); for
         convergence studies. [-]
-    n_damp : int
+    n_damp : int or None
         Crank-Nicolson steps replaced by implicit-Euler half steps after a wall jump
-        (Rannacher damping), >= 0.
+        (Rannacher damping), >= 0; for "strip", at the start of each run. None (default): 2,
+        for "strip" 1.
     parallel : None, bool, "threads" or "prange"
         Spread pressures over threads, as in :func:`solve_contact` (default: a thread pool
         over the disk-cached serial kernels for >= 4 pressures, bitwise equal to False).
@@ -167,7 +174,12 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
     check_nonnegative(G, "G", "Pa^2")
     check_nondecreasing(G, "G", "Pa^2")
     if sigma_y is not None:
-        return _solve_yield(G, pressure, sigma_a, sigma_y, method, kinks, level)
+        return solve_yield_diffusion(G, pressure, sigma_a, sigma_y, method=method, kinks=kinks,
+                                     level=level, rtol=rtol, n_damp=n_damp, parallel=parallel,
+                                     check_pressure=_check_pressure)
+    if method == "strip":
+        raise ValueError("method 'strip' is the two-wall solver: it needs a yield wall "
+                         "(sigma_y=...); for one wall use 'cn' or 'auto'")
     wall = None
     if callable(sigma_a):
         # a wall as a function: sampled below to the tolerance, on a schedule that holds G
@@ -203,6 +215,8 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
                 f"sigma_a must have shape (n_p, n_t) = ({n_p}, {n_t}) [Pa]; got shape {sa.shape}"
             )
         rows = sa.copy()
+    if n_damp is None:
+        n_damp = 2
     if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
         raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
     if level is not None and (isinstance(level, bool) or not isinstance(level, (int, np.integer))
@@ -270,66 +284,6 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         error_estimate=out["error_estimate"], method=use, status=out["status"],
         success=success, message=message, timings=timings, counts=out.get("counts"),
     )
-
-
-def _solve_yield(G, pressure, sigma_a, sigma_y, method, kinks, level) -> DiffusionResult:
-    """solve_diffusion with a yield wall (a constant sigma_y, no detachment wall)."""
-    hardness = check_hardness(sigma_y, "sigma_y")
-    if callable(sigma_a) or np.any(as_float_array(sigma_a, "sigma_a", "Pa") != 0):
-        raise ValueError(f"sigma_y with a detachment wall (sigma_a != 0): {NOT_AVAILABLE}")
-    check_yield_method(method)
-    if kinks is not None or level is not None:
-        raise ValueError("kinks and level apply to the grid methods; with a yield wall the "
-                         "exact series serves (method 'analytic'); got "
-                         f"kinks = {kinks!r}, level = {level!r}")
-    p = _check_pressure(pressure, allow_negative=False)
-    check_below_hardness(p, hardness, "sigma_y")
-    t0 = time.perf_counter()
-    out = constant_yield(p, G, hardness)
-    n_p, n_t = p.size, G.size
-    status = np.zeros(n_p, dtype=np.int64)
-    return DiffusionResult(
-        G=G, pressure=p, sigma_a=np.zeros((n_p, n_t)), area=out["elastic_area"],
-        load=out["load"], detached_area=out["detached_area"],
-        detached_load=out["detached_load"], error_estimate=np.zeros((n_p, n_t)),
-        method="analytic", status=status, success=True, message="ok",
-        timings={"solve": time.perf_counter() - t0}, plastic_area=out["plastic_area"],
-        plastic_load=out["plastic_load"], sigma_y=hardness)
-
-
-def _solve_contact_yield(surface, pressure, zeta, e, dg, method, theory, hardness):
-    """solve_contact with a constant yield wall (no adhesion): the exact two-wall series."""
-    if dg > 0:
-        raise ValueError(f"hardness with work_of_adhesion > 0: {NOT_AVAILABLE}; got hardness "
-                         f"= {hardness!r} and work_of_adhesion = {dg!r}")
-    if theory != "persson01":
-        raise ValueError(f"hardness applies to the original theory (theory='persson01'); the "
-                         f"corrected theories have no yield wall; got theory = {theory!r}")
-    check_yield_method(method, "hardness")
-    z = _check_zeta(zeta, surface)
-    p = _check_pressure(pressure, allow_negative=False)
-    check_below_hardness(p, hardness)
-    t0 = time.perf_counter()
-    G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
-    G[0] = 0.0
-    out = constant_yield(p, G, hardness)
-    area_z = out["elastic_area"] + out["plastic_area"]
-    area = area_z[:, -1].copy()
-    zeros = np.zeros((p.size, z.size))
-    status = np.zeros(p.size, dtype=np.int64)
-    return ContactResult(
-        pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=zeros,
-        gamma_eff=zeros.copy(), load=out["load"][:, -1].copy(),
-        mean_contact_pressure=per_contact_area(p, area),
-        mean_contact_stress=per_contact_area(p, area),
-        detached_area=out["detached_area"][:, -1].copy(), detached_load=np.zeros(p.size),
-        error_estimate=np.zeros(p.size), method="analytic", status=status, success=True,
-        message="ok", timings={"solve": time.perf_counter() - t0},
-        separation_source=("separation, stiffness and elastic_energy are derived for elastic "
-                           f"contact only; got hardness = {hardness!r} Pa"),
-        elastic_area=out["elastic_area"][:, -1].copy(),
-        plastic_area=out["plastic_area"][:, -1].copy(),
-        plastic_area_zeta=out["plastic_area"], hardness=hardness)
 
 
 def _analytic_linear(G, rows, p):
@@ -470,15 +424,19 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         gamma of the corrected theory; None (default) takes its published default (0.42
         for yp08 and xu24, 5/9 for wm17), which ``result.theory_gamma`` records. Range
         (0, 1] ((0.01019, 1] for wm17); must be None for "persson01". [-]
-    hardness : float or None
-        The yield wall: a constant penetration hardness sigma_Y > 0 [Pa]. Then
-        ``result.area`` is the real contact area A_el + A_pl (elastic plus yielded, both in
-        contact), ``result.elastic_area`` and ``result.plastic_area`` the two parts (and
-        ``plastic_area_zeta`` its profile), by the exact two-wall series of
-        :mod:`persson_fast.plasticity` (method "auto" or "analytic"; scenes without
-        adhesion; nominal pressures <= hardness). A scale-dependent hardness (a callable of
-        zeta or a table) and hardness with adhesion are not available in this version and
-        raise a ValueError that says so. None (default): elastic, bitwise as before.
+    hardness : float, callable, table or None
+        The yield wall sigma_Y(zeta): a constant penetration hardness > 0 [Pa], a vectorised
+        callable of zeta returning Pa (``pf.hardness_power_law``, ``pf.hardness_nix_gao``,
+        your own), or a table (zeta, sigma_Y) / ``pf.hardness_table`` (log-log linear
+        between its points, which must span the zeta range). Then ``result.area`` is the
+        real contact area A_el + A_pl (elastic plus yielded, both in contact),
+        ``result.elastic_area`` and ``result.plastic_area`` the two parts (and
+        ``plastic_area_zeta`` its profile). A constant one is the exact two-wall series
+        (method "auto" or "analytic", error 0); a scale-dependent one (or method="strip")
+        the two-wall solver on the wall sigma_Y(zeta(G)), error-controlled to rtol in the
+        real area (:mod:`persson_fast.plasticity`, :mod:`persson_fast.strip`). Scenes without
+        adhesion (hardness with adhesion raises a ValueError that says why); nominal
+        pressures below sigma_Y(1). None (default): elastic, bitwise as before.
 
     Returns
     -------
@@ -512,8 +470,16 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
                                     energy_correction)
     theory, theory_gamma = check_theory(theory, theory_gamma)
     if hardness is not None:
-        return _solve_contact_yield(surface, pressure, zeta, e, float(dg), method, theory,
-                                    check_hardness(hardness))
+        hardness = check_hardness(hardness, scale_dependent=True)
+        z = _check_zeta(zeta, surface)
+        G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
+        G[0] = 0.0
+        return solve_yield_contact(surface, pressure, z, G, e=e, dg=float(dg), method=method,
+                                   theory=theory, hardness=hardness, rtol=rtol,
+                                   parallel=parallel, check_pressure=_check_pressure)
+    if method == "strip":
+        raise ValueError("method 'strip' is the two-wall solver: it needs a yield wall "
+                         "(hardness=...); use 'auto' or 'cn' without one")
     if theory != "persson01":
         check_theory_scene(theory, float(dg))
         if method not in ("auto", "analytic"):

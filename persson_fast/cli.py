@@ -235,8 +235,12 @@ def build_parser() -> argparse.ArgumentParser:
                    help="beta of seed Eq. 8 (default 1/sqrt 2)")
     g.add_argument("--pull-off", action="store_true", help="also compute the pull-off stress")
     ct.add_argument("--hardness", type=float, metavar="SIGMA_Y",
-                    help="constant penetration hardness [Pa]: the yield wall; adds the "
-                         "elastic and plastic area columns (no adhesion)")
+                    help="penetration hardness [Pa]: the yield wall; adds the elastic and "
+                         "plastic area columns (no adhesion); constant, or at zeta = 1 with "
+                         "--hardness-exponent (in a TOML file also a table: hardness = "
+                         "{zeta = [...], sigma_y = [...]})")
+    ct.add_argument("--hardness-exponent", type=float, metavar="EXPONENT",
+                    help="a scale-dependent hardness SIGMA_Y zeta^EXPONENT (needs --hardness)")
     ct.add_argument("--separation", action="store_true",
                     help="also print (and write to --csv) the mean interfacial separation u "
                          "[m], the contact stiffness K = -dp/du [Pa/m] and the stored elastic "
@@ -554,7 +558,7 @@ def _resolve_contact(args) -> dict:
     cfg = _load_toml(args.config) if args.config else {}
     known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
                  "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off",
-                 "theory", "theory_gamma", "separation", "hardness"}
+                 "theory", "theory_gamma", "separation", "hardness", "hardness_exponent"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -637,7 +641,26 @@ def _resolve_contact(args) -> dict:
     want_separation = bool(args.separation or cfg.get("separation", False))
     hardness = args.hardness
     if hardness is None and "hardness" in cfg:
-        hardness = _number(cfg["hardness"], "hardness")
+        if isinstance(cfg["hardness"], dict):
+            from .plasticity import check_hardness
+            try:
+                hardness = check_hardness(cfg["hardness"], "hardness", scale_dependent=True)
+            except ValueError as exc:
+                raise CommandError(f"--config: {exc}") from None
+        else:
+            hardness = _number(cfg["hardness"], "hardness")
+    exponent = args.hardness_exponent
+    if exponent is None and "hardness_exponent" in cfg:
+        exponent = _number(cfg["hardness_exponent"], "hardness_exponent")
+    if exponent is not None:
+        if not isinstance(hardness, float):
+            raise CommandError(f"--hardness-exponent needs a constant --hardness (sigma_Y at "
+                               f"zeta = 1) [Pa]; got hardness = {hardness!r}")
+        from .plasticity import hardness_power_law
+        try:
+            hardness = hardness_power_law(hardness, exponent)
+        except ValueError as exc:
+            raise CommandError(str(exc)) from None
     theory = {}
     name = args.theory or cfg.get("theory")
     if name is not None:
@@ -731,7 +754,9 @@ def _cmd_contact(args) -> int:
         print(f"area theory: {res.theory}, gamma = {res.theory_gamma:g}")
     extra = {}
     if yield_wall:
-        print(f"yield wall: constant hardness {s['hardness']:.5g} Pa; A/A0 = elastic + plastic")
+        h = s["hardness"]
+        what = f"constant hardness {h:.5g} Pa" if isinstance(h, float) else f"hardness {h!r}"
+        print(f"yield wall: {what}; A/A0 = elastic + plastic")
         extra = {"elastic_area": res.elastic_area, "plastic_area": res.plastic_area}
     if s["separation"]:
         try:

@@ -31,6 +31,18 @@ With adhesion::
             out[i], status = embed.adhesive_area(scene, local_pressure[i], rtol)
         return out
 
+Elastoplastic, a yield wall at sigma_y(G) beside the detachment wall (the "strip" solver,
+error-controlled in the real area A_el + A_pl)::
+
+    @numba.njit
+    def plastic(G, sigma_a, sigma_y, local_pressure, rtol):
+        out = np.empty(local_pressure.size)
+        for i in range(local_pressure.size):
+            a_el, a_pl, status = embed.elastoplastic_area(G, sigma_a, sigma_y,
+                                                          local_pressure[i], rtol)
+            out[i] = a_pl
+        return out
+
 A contact law p(u), K(u) of a scene without adhesion (the mean interfacial separation u of
 :func:`persson_fast.solve_separation`), tabulated once with error control::
 
@@ -64,7 +76,11 @@ BAD_RTOL      11    ``rtol`` finite and in [RTOL_MIN, RTOL_MAX] = [1e-12, 0.1] (
                     of the Python layer)
 BAD_PRESSURE  10    ``sigma0`` / ``pressure`` finite (any sign)
 BAD_G         12    ``G``: at least one point, finite, ``G[0] >= 0``, non-decreasing
-BAD_SIGMA_A   13    ``sigma_a``: the length of ``G``, finite
+BAD_SIGMA_A   13    ``sigma_a``: the length of ``G``, finite (``elastoplastic_area``: and no
+                    jump, a repeated G with different values)
+BAD_SIGMA_Y   20    ``elastoplastic_area`` only: ``sigma_y`` of G's length, finite, no jump,
+                    ``sigma_a + sigma_y > 0`` at every G
+BAD_PRESSURE  10    ``elastoplastic_area``: also ``-sigma_a[0] < sigma0 < sigma_y[0]``
 BAD_INPUT     5     ``diffusion_solve`` only: ``n_damp >= 0`` and every output of G's length
 BAD_SCENE     14    ``adhesive_area`` only: ``scene`` as :func:`adhesive_scene` builds it --
                     each grid's G at least 2 points, finite, ``G[0] >= 0``, non-decreasing;
@@ -87,11 +103,13 @@ from ._kernels.adhesion import solve_adhesive_one
 from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_separation,
                                    law_stiffness)
 from ._kernels.diffusion import solve_one
+from ._kernels.strip import N_DAMP as STRIP_N_DAMP
+from ._kernels.strip import solve_strip
 from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
 from .contact_law import ContactLaw, contact_law
 from .scene import DETACHMENT_PREFACTOR
 
-__all__ = ["diffusion_area", "diffusion_solve", "adhesive_scene", "adhesive_area",
+__all__ = ["diffusion_area", "diffusion_solve", "elastoplastic_area", "adhesive_scene", "adhesive_area",
            "contact_law", "ContactLaw", "law_pressure", "law_stiffness",
            "law_pressure_stiffness", "law_separation", "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
 
@@ -190,6 +208,61 @@ def diffusion_area(G, sigma_a, sigma0, rtol):
     er = np.empty(n)
     s = solve_one(G, sigma_a, sigma0, rtol, 2, a, ld, da, dl, er)
     return a[n - 1], s
+
+
+@njit_serial
+def _no_jump(G, v):
+    for k in range(1, G.shape[0]):
+        if G[k] == G[k - 1] and v[k] != v[k - 1]:
+            return False
+    return True
+
+
+@njit_serial
+def _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol):
+    """The first failing argument rule of a two-wall solve (see the module table), or 0."""
+    s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
+    if s != _status.OK:
+        return s
+    n = G.shape[0]
+    if not _no_jump(G, sigma_a):
+        return _status.BAD_SIGMA_A
+    if not _finite_ok(sigma_y, n, -math.inf) or not _no_jump(G, sigma_y):
+        return _status.BAD_SIGMA_Y
+    for k in range(n):
+        if not sigma_a[k] + sigma_y[k] > 0.0:
+            return _status.BAD_SIGMA_Y
+    if not (-sigma_a[0] < sigma0 < sigma_y[0]):
+        return _status.BAD_PRESSURE
+    return _status.OK
+
+
+@njit_serial
+def elastoplastic_area(G, sigma_a, sigma_y, sigma0, rtol):
+    """(A_el, A_pl, status) at G[-1] of one pressure between the detachment wall at
+    -sigma_a(G) and the yield wall at sigma_y(G) (the real contact area is A_el + A_pl).
+
+    G: (n,) non-decreasing, G[0] >= 0; sigma_a, sigma_y: (n,), linear in G between the points,
+    no jumps; sigma0 strictly between the walls at G[0]; rtol: float (consistent units:
+    stress and sqrt(G) alike). The same solver as ``solve_diffusion(..., sigma_y=...,
+    method="strip")`` (error control on A_el + A_pl). A bad argument gives (NaN, NaN, its
+    code): module table.
+    """
+    s = _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol)
+    if s != _status.OK:
+        return np.nan, np.nan, s
+    n = G.shape[0]
+    el = np.empty(n)
+    ld = np.empty(n)
+    pl = np.empty(n)
+    pll = np.empty(n)
+    da = np.empty(n)
+    dl = np.empty(n)
+    er = np.empty(n)
+    counts = np.zeros(3, dtype=np.int64)
+    s = solve_strip(G, sigma_a, sigma_y, sigma0, rtol, -1, STRIP_N_DAMP, el, ld, pl, pll, da,
+                    dl, er, counts)
+    return el[n - 1], pl[n - 1], s
 
 
 def adhesive_scene(surface, *, e_star=None, work_of_adhesion=None, energy_correction=None,

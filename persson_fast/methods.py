@@ -18,7 +18,11 @@ Every entry says:
   step halved together), measured by ``python -m benchmarks.report``;
 * ``adhesion`` -- whether it can serve the self-consistent fixed point of seed Eqs. 8-9;
 * ``jumps`` -- whether it can serve a wall that jumps (a flat stretch of G);
-* ``nonlinear`` -- whether it can serve a wall that is not linear in G.
+* ``nonlinear`` -- whether it can serve a wall that is not linear in G;
+* ``two_walls`` (default False) -- a method that needs the yield wall (``sigma_y``,
+  ``hardness``) and serves nothing else ("strip"); with a yield wall, "auto" takes
+  "analytic" for a constant one without a detachment wall and "strip" otherwise
+  (:mod:`persson_fast.yield_api`).
 
 What the grid methods report as ``error_estimate`` (the estimated error of the *returned*
 area, at every returned G): each solve runs three resolutions in exact 2:1 ratio (N/2, N,
@@ -77,6 +81,16 @@ METHODS = {
         "family": "integral", "order": 4, "adhesion": False, "jumps": False,
         "nonlinear": True,
         "sweep": ("persson_fast._kernels.bnr", "bnr_sweep", None, False),
+    },
+    "strip": {
+        "description": (
+            "two walls (detachment and yield): Crank-Nicolson on the strip between them mapped "
+            "onto [0, 1], Rannacher start, Richardson-extrapolated ladder with a-posteriori "
+            "refinement; only with a yield wall (sigma_y, hardness)"
+        ),
+        "family": "two-wall", "order": 4, "adhesion": False, "jumps": False, "nonlinear": True,
+        "two_walls": True,
+        "sweep": ("persson_fast._kernels.strip", "sweep", None, True),
     },
     "auto": {
         "description": "the cheapest method that meets rtol for the scene (see AUTO_POLICY)",

@@ -81,8 +81,14 @@ class DiffusionResult:
     plastic_area : (n_p, n_t) -- area absorbed at the yield wall sigma_y (zeros without
         one); area + plastic_area + detached_area == 1. [-]
     plastic_load : (n_p, n_t) -- int sigma_y dA_pl, the load the yielded area carries
-        (load + plastic_load + detached_load == pressure with a yield wall). [Pa]
-    sigma_y : float or None -- the yield wall (a constant in this version). [Pa]
+        (load + plastic_load - detached_load == pressure with a yield wall; detached_load
+        = int sigma_a dD as without one). [Pa]
+    sigma_y : float, (n_p, n_t) or None -- the yield wall: the constant, or its values at G
+        (samples or a callable evaluated there). [Pa]
+
+    With a yield wall solved by "strip", ``error_estimate`` and rtol refer to the real
+    contact area A = area + plastic_area (|dA| <= rtol A + 1e-12; the grid is refined until
+    the estimates of the elastic and plastic parts meet that bound too).
     """
 
     G: np.ndarray
@@ -177,7 +183,8 @@ class ContactResult:
         and the yielded (plastically deformed) fractions of A0 at zeta1; ``area`` is their
         sum, the real contact area (both parts are in contact). None without one. [-]
     plastic_area_zeta : (n_p, n_z) -- A_pl(zeta)/A0 (with a yield wall). [-]
-    hardness : float or None -- the constant yield stress sigma_Y of the solve. [Pa]
+    hardness : float, callable or None -- the yield stress sigma_Y of the solve: a constant
+        [Pa] or a scale-dependent one (a callable of zeta, a ``HardnessTable``).
     load : with a yield wall, the load of the elastic part, int sigma P dsigma
         = p - hardness * plastic_area (the yielded area carries the rest). [Pa]
     """
@@ -267,8 +274,10 @@ class ContactResult:
         if self.theory != "persson01":
             lines.append(f"  theory          {self.theory} (gamma = {self.theory_gamma:.6g})")
         if self.hardness is not None:
-            lines.append(f"  yield wall      hardness {self.hardness:.6g} Pa; area = elastic + "
-                         f"plastic; plastic_area {_span(self.plastic_area)}")
+            h = (f"{self.hardness:.6g} Pa" if isinstance(self.hardness, float)
+                 else repr(self.hardness))
+            lines.append(f"  yield wall      hardness {h}; area = elastic + plastic; "
+                         f"plastic_area {_span(self.plastic_area)}")
         lines.append(f"  error_estimate  max {_largest(self.error_estimate):.3g}; "
                      f"timings: {_timings(self.timings)}>")
         return "\n".join(lines)

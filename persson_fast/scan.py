@@ -367,12 +367,13 @@ def _check_values(name, values):
     return True, arr, values_out
 
 
-def _check_solve_value(name, value, label):
-    """Validate one value of a solve parameter; return it as a float (or None)."""
+def _check_solve_value(name, value, label, axis=False):
+    """Validate one value of a solve parameter; return it as a float (or None); a fixed
+    hardness may also be scale-dependent (a callable of zeta or a table)."""
     if name == "hardness":
         if value is None or (isinstance(value, float) and math.isnan(value)):
             return None
-        return check_hardness(value, label)
+        return check_hardness(value, label, scale_dependent=not axis)
     if name == "energy_correction":
         if value is None:
             return None
@@ -515,7 +516,7 @@ class _Grid:
         for name in SOLVE_PARAMETERS:
             if name in self.values:
                 self.checked[name] = [
-                    _check_solve_value(name, v, f"params[{name!r}][{i}]")
+                    _check_solve_value(name, v, f"params[{name!r}][{i}]", axis=True)
                     for i, v in enumerate(self.values[name])]
             else:
                 label = f"params[{name!r}]" if name in params else name
@@ -843,7 +844,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         recorded in ``attrs``; to compare theories, scan once per theory. [-]
     hardness : float or None
         The yield wall of every scene, unless scanned in ``params`` (values: a constant
-        hardness [Pa], or None / NaN for none; see ``solve_contact(hardness=...)``). With a
+        hardness [Pa], or None / NaN for none; see ``solve_contact(hardness=...)``). Held
+        fixed, it may also be scale-dependent (a callable of zeta or a table; ``attrs``
+        records its repr; a callable must pickle for process workers). With a
         yield wall anywhere in the scan the dataset has ``elastic_area`` and
         ``plastic_area`` ((..., pressure); ``area`` is their sum).
     separation : bool
@@ -967,9 +970,10 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
             raise ValueError(f"separation=True needs elastic scenes: the scene "
                              f"{grid.labels[i]} has hardness (the separation is not derived "
                              f"with a yield wall here)")
-        if method not in ("auto", "analytic"):
+        if method not in ("auto", "analytic", "strip"):
             raise ValueError(f"method {method!r} cannot carry a yield wall (hardness); use "
-                             f"'auto' or 'analytic' (the scene {grid.labels[i]} has hardness)")
+                             f"'auto', 'analytic' (a constant one) or 'strip' (the scene "
+                             f"{grid.labels[i]} has hardness)")
     if separation and (theory != "persson01" or any(adhesive)):
         which = (f"theory = {theory!r}" if theory != "persson01" else
                  f"the scene {grid.labels[adhesive.index(True)]} has work_of_adhesion > 0")
@@ -1020,7 +1024,8 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     ds = _assemble(xr, grid, p, results, options, profile_zeta,
                    {"surface_model": grid.factory_name, "method": method, "rtol": rtol,
                     "theory": theory, "theory_gamma": "" if theory_gamma is None else theory_gamma,
-                    "hardness": "" if hardness is None or "hardness" in params else hardness,
+                    "hardness": ("" if hardness is None or "hardness" in params else
+                                 hardness if isinstance(hardness, float) else repr(hardness)),
                     "pull_off_rtol": pull_off_rtol if pull_off else "",
                     "execution": execution, "wall_time_s": wall,
                     "persson_fast_version": __version__})

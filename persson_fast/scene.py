@@ -157,9 +157,11 @@ class Scene:
     detachment_prefactor : float
         beta of seed Eq. 8 (default ``DETACHMENT_PREFACTOR`` = 1/sqrt 2). [-]
     hardness : float or None
-        The yield wall: a constant penetration hardness sigma_Y > 0 [Pa] (without adhesion;
-        see :mod:`persson_fast.plasticity`), or None (default, elastic). A scale-dependent
-        hardness (callable or table) is not available in this version (a ValueError says so).
+        The yield wall (without adhesion; see :mod:`persson_fast.plasticity`): a constant
+        penetration hardness sigma_Y > 0 [Pa], a callable of zeta (``hardness_power_law``,
+        ``hardness_nix_gao``, your own), a table (zeta, sigma_Y) (``hardness_table``), or None
+        (default, elastic). A scale-dependent hardness is solved by ``solve_contact``; the
+        scan takes numbers only.
 
     The values are validated on construction (the rules of :func:`persson_fast.solve_contact`,
     including that the scene stays finite in float64) and stored as floats.
@@ -177,7 +179,8 @@ class Scene:
     def __post_init__(self):
         from .plasticity import NOT_AVAILABLE, check_hardness
 
-        object.__setattr__(self, "hardness", check_hardness(self.hardness))
+        object.__setattr__(self, "hardness", check_hardness(self.hardness,
+                                                           scale_dependent=True))
         e, dg, beta = _check_scene_args(self.surface, self.e_star, self.work_of_adhesion,
                                         self.detachment_prefactor, self.energy_correction)
         if self.hardness is not None and dg > 0:

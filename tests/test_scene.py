@@ -58,8 +58,9 @@ def test_scene_validates_once_and_is_frozen():
         pf.Scene(object(), e_star=1e9)
     with pytest.raises(ValueError, match="hardness must be > 0"):
         pf.Scene(SA, e_star=1e9, hardness=0.0)
-    with pytest.raises(ValueError, match="scale-dependent yield wall"):
-        pf.Scene(SA, e_star=1e9, hardness=lambda zeta: 3e8)
+    with pytest.raises(ValueError, match="hardness must be a number"):
+        pf.Scene(SA, e_star=1e9, hardness=[3e8, 1e9])
+    assert callable(pf.Scene(SA, e_star=1e9, hardness=lambda zeta: 3e8 + 0 * zeta).hardness)
     assert pf.Scene(SA, e_star=1e9, hardness=3e8).hardness == 3e8
     s = pf.Scene(SA, e_star=1e9)
     with pytest.raises(dataclasses.FrozenInstanceError):
