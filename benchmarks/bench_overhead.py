@@ -61,3 +61,26 @@ def test_one_pressure_solve_contact_closed_form(benchmark, scene):
     s, e_star, _ = scene
     r = benchmark(pf.solve_contact, s, PRESSURE, e_star=e_star, rtol=RTOL)
     assert r.success and r.method == "analytic"
+
+
+CLOSED_FORM_PRESSURES = np.geomspace(1e3, 1e8, 10_000)
+SELF_AFFINE = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+
+
+def test_closed_form_10k_solve_contact(benchmark):
+    """The closed form through solve_contact (final areas; the A(zeta) profiles are computed
+    only when read), 10,000 pressures: compare with test_closed_form_10k_bare_erf."""
+    benchmark.group = "closed form, 10k pressures"
+    r = benchmark(pf.solve_contact, SELF_AFFINE, CLOSED_FORM_PRESSURES, e_star=1e9)
+    assert r.method == "analytic"
+
+
+def test_closed_form_10k_bare_erf(benchmark):
+    """The bare NumPy/SciPy erf(p / 2 sqrt(G1)) of the same pressures (G1 computed once)."""
+    from scipy.special import erf
+
+    benchmark.group = "closed form, 10k pressures"
+    g1 = float(SELF_AFFINE.diffusion_time(SELF_AFFINE.q1, 1e9))
+    a = benchmark(lambda: erf(CLOSED_FORM_PRESSURES / (2.0 * np.sqrt(g1))))
+    r = pf.solve_contact(SELF_AFFINE, CLOSED_FORM_PRESSURES, e_star=1e9)
+    np.testing.assert_allclose(r.area, a, rtol=1e-14)

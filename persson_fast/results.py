@@ -129,6 +129,25 @@ class DiffusionResult:
         )
 
 
+class Deferred:
+    """A value computed on first access, ``func(*args)`` (picklable when ``func`` is a
+    module-level function): :class:`ContactResult` takes it for a profile that a closed form
+    can give cheaply but that most callers never read."""
+
+    __slots__ = ("func", "args")
+
+    def __init__(self, func, *args):
+        self.func = func
+        self.args = args
+
+    def __reduce__(self):
+        return (Deferred, (self.func, *self.args))
+
+
+#: the ContactResult fields that may be given as a Deferred
+_DEFERRABLE = ("area_zeta", "sigma_a", "gamma_eff")
+
+
 @dataclass(frozen=True, repr=False)
 class ContactResult:
     """Result of :func:`persson_fast.solve_contact` (one scene, many pressures).
@@ -225,6 +244,26 @@ class ContactResult:
     #: the reason (a str) why it is not; set by solve_contact
     separation_source: object = field(default=None, repr=False, compare=False)
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+
+    def __post_init__(self):
+        pending = {name: self.__dict__[name] for name in _DEFERRABLE
+                   if isinstance(self.__dict__.get(name), Deferred)}
+        if pending:
+            # removed from the instance: the first read goes to __getattr__, which computes
+            # and keeps the value (bitwise what an eager solve stores)
+            object.__setattr__(self, "_pending", pending)
+            for name in pending:
+                object.__delattr__(self, name)
+
+    def __getattr__(self, name):
+        pending = self.__dict__.get("_pending")
+        if pending is not None and name in pending:
+            d = pending[name]
+            value = d.func(*d.args)
+            object.__setattr__(self, name, value)
+            pending.pop(name, None)
+            return value
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
 
     def _separation_result(self):
         src = self.separation_source

@@ -204,9 +204,11 @@ def _strip(G, pressure, sigma_a, sigma_y, *, method, kinks, level, rtol, n_damp,
             out[name] = np.ascontiguousarray(out[name][:, index])
     if sampled:
         # the kernel's estimate is that of the sampled (piecewise-linear) walls; the sampling's
-        # own contribution is bounded by its share of rtol (walls.py), added here
+        # own contribution is bounded by its share of rtol (walls.py), added here (not for the
+        # pressures the yield wall cannot reach: their closed form does not use the samples)
         real = out["elastic_area"] + out["plastic_area"]
-        out["error_estimate"] = out["error_estimate"] + wall_share * rtol * real
+        out["error_estimate"] = out["error_estimate"] + np.where(
+            far[:, None], 0.0, wall_share * rtol * real)
     status = np.asarray(out["status"]).copy()
     if any(capped):
         status = np.where(status == 0, GRID_CAP, status)

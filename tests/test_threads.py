@@ -47,7 +47,7 @@ CHILD_TIMEOUT = 600
 #: Script of the child processes; its functions are also called in this process.
 #: ``python -c CHILD <command> <json arguments>`` prints one JSON line.
 CHILD = r'''
-import hashlib, json, sys, threading, time
+import dataclasses, hashlib, json, sys, threading, time
 import numpy as np
 import persson_fast as pf
 
@@ -76,7 +76,9 @@ def adhesive(n, parallel, rtol=1e-3):
 def digest(res):
     """sha256 of every array of a result (names, dtypes, shapes and bytes): bitwise identity."""
     h = hashlib.sha256()
-    for name in sorted(vars(res)):
+    # the dataclass fields (a profile deferred until read is computed here) and the rest
+    names = set(vars(res)) | {f.name for f in dataclasses.fields(res)}
+    for name in sorted(names - {"_pending"}):
         value = getattr(res, name)
         if isinstance(value, np.ndarray):
             value = np.ascontiguousarray(value)
