@@ -15,6 +15,7 @@ import numpy as np
 from ._kernels.adhesion import detachment_update
 from ._kernels.status import RTOL_NOT_MET, WALL_JUMP
 from .adhesion import _controls, _run, solve_adhesive_contact
+from ._kernels.diffusion import SMOOTH_WALL
 from .methods import choose_auto, variant_of
 from .results import summarize_status
 from .scene import DETACHMENT_PREFACTOR
@@ -144,7 +145,8 @@ class _Branch:
         G, c, wa, wb, scale, _ = _scene_arrays(surface, self.zeta, e_star, work_of_adhesion, beta)
         self.G, self.c, self.wa, self.wb, self.scale = G, c, wa, wb, scale
         self.gamma_s = gamma_s
-        self.variant = int(variant)
+        # the adhesive wall: no kink detection, as in the fixed point of solve_contact
+        self.variant = int(variant) | SMOOTH_WALL
         self.n_damp = int(n_damp)
         self._kernel = sweep_serial
         n = self.zeta.size

@@ -28,7 +28,7 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
-from .diffusion import solve_variant
+from .diffusion import SMOOTH_WALL, solve_variant
 
 #: iterations without halving the best residual after which the fixed point gives up
 STALL_ITERATIONS = 10
@@ -153,8 +153,8 @@ def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l,
       (= c^2 g, smooth) is taken linear in G and the wall sampled at points equally spaced
       in sigma_a, ceil((1 - min/max) SQRT_CELL_DENSITY) - 1 of them.
 
-    Outputs at the nodes; in a row without a crossing this is ``solve_variant`` on the nodes
-    alone.
+    Outputs at the nodes; in a row without a crossing this is ``solve_variant`` (with
+    ``SMOOTH_WALL``) on the nodes alone.
     """
     n = G.shape[0]
     n_cross = 0
@@ -162,8 +162,8 @@ def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l,
         if _is_crossing(g, G, i):
             n_cross += 1
     if n_cross == 0:
-        return solve_variant(variant, G, x, sigma0, rtol, np.int64(-1), n_damp, area, load,
-                             det_a, det_l, err, counts)
+        return solve_variant(variant | SMOOTH_WALL, G, x, sigma0, rtol, np.int64(-1), n_damp,
+                             area, load, det_a, det_l, err, counts)
     m = CROSSING_POINTS
     cap = n + n_cross * m
     for i in range(n - 1):
@@ -223,8 +223,8 @@ def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l,
     da = np.empty(na)
     dl = np.empty(na)
     ea = np.empty(na)
-    kstat = solve_variant(variant, Ga[:na], xa[:na], sigma0, rtol, np.int64(-1), n_damp, aa, la,
-                          da, dl, ea, counts)
+    kstat = solve_variant(variant | SMOOTH_WALL, Ga[:na], xa[:na], sigma0, rtol, np.int64(-1),
+                          n_damp, aa, la, da, dl, ea, counts)
     for i in range(n):
         area[i] = aa[node[i]]
         load[i] = la[node[i]]
@@ -256,7 +256,8 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
 
     Parameters
     ----------
-    variant : int -- grid variant of the diffusion solves (see ``solve_variant``).
+    variant : int -- grid variant of the diffusion solves (see ``solve_variant``; run with
+        ``SMOOTH_WALL``).
     G : (n_z,) -- diffusion times at the magnifications, G[0] = 0.
     c : (n_z,) -- beta sqrt(dgamma E* q)/scale at the magnifications.
     wa, wb : (n_z - 1,) -- quadrature weights of U_el / dgamma.
@@ -331,8 +332,8 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             kstat = wall_solve(variant, G, x, g, sigma0, rtol_it, n_damp, area, load, det_a,
                                det_l, err, counts)
         else:
-            kstat = solve_variant(variant, G, x, sigma0, rtol_it, np.int64(-1), n_damp, area,
-                                  load, det_a, det_l, err, counts)
+            kstat = solve_variant(variant | SMOOTH_WALL, G, x, sigma0, rtol_it, np.int64(-1),
+                                  n_damp, area, load, det_a, det_l, err, counts)
         if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
             break
