@@ -93,3 +93,35 @@ def optional_import(module: str, extra: str, what: str):
             f"{what} needs the optional package {module!r}, which is not installed; install the "
             f"{extra!r} extra: python -m pip install \"persson_fast[{extra}]\" (in a checkout: "
             f"python -m pip install -e \".[{extra}]\")", name=module) from exc
+
+
+def wall_rows(arr: np.ndarray, name: str, n_p: int, n_t: int) -> np.ndarray:
+    """A wall given as a scalar, (n_t,) or (n_p, n_t) samples (a validated float array), as a
+    fresh (n_p, n_t) array of rows, one per pressure."""
+    if arr.ndim == 0:
+        return np.full((n_p, n_t), float(arr))
+    if arr.ndim == 1:
+        if arr.size != n_t:
+            raise ValueError(f"{name} must have the length of G ({n_t}) [Pa]; got shape "
+                             f"{arr.shape}")
+        return np.broadcast_to(arr, (n_p, n_t)).copy()
+    if arr.shape != (n_p, n_t):
+        raise ValueError(f"{name} must have shape (n_p, n_t) = ({n_p}, {n_t}) [Pa]; got shape "
+                         f"{arr.shape}")
+    return arr.copy()
+
+
+def check_n_damp(n_damp, default: int) -> int:
+    """Damped (implicit-Euler) step pairs: an integer >= 0; None gives ``default``."""
+    if n_damp is None:
+        return default
+    if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
+        raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
+    return int(n_damp)
+
+
+def check_level(level) -> None:
+    """An explicit resolution level of a grid method: None or an integer in [0, 10]."""
+    if level is not None and (isinstance(level, bool) or not isinstance(level, (int, np.integer))
+                              or not 0 <= level <= 10):
+        raise ValueError(f"level must be an integer in [0, 10] [-] or None; got level = {level!r}")

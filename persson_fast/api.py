@@ -9,7 +9,8 @@ import numpy as np
 
 from . import analytic
 from ._kernels.status import GRID_CAP
-from ._validation import as_float_array, check_finite, check_nondecreasing, check_nonnegative
+from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
+                          check_nondecreasing, check_nonnegative, wall_rows)
 from .adhesion import solve_adhesive_contact, warm_adhesion
 from .methods import check_method, check_serves, choose_auto
 from .results import (ContactResult, Deferred, DiffusionResult, per_contact_area,
@@ -119,9 +120,10 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         -sigma_a < pressure < sigma_y. None (default): no yield wall. [Pa]
     kinks : array_like or None
         Only with a callable wall (sigma_a, or sigma_y with "strip"): diffusion times where
-        a wall's slope jumps, put on the schedule exactly. Kinks not declared are found by the adaptive sampling (which
-        puts a sample next to them, within ~1e-3 of the tolerance). A callable that jumps is
-        refused (give such a wall as samples with a repeated G). [Pa^2]
+        a wall's slope jumps, put on the schedule exactly. Kinks not declared are found by the
+        adaptive sampling (which puts a sample next to them, within ~1e-3 of the tolerance).
+        A callable that jumps is refused (give such a wall as samples with a repeated G).
+        [Pa^2]
     method : str
         A name in :data:`persson_fast.METHODS`: "cn" (default), "cn-plain",
         "implicit-euler", "fixed-grid", "bnr", "analytic" (a wall linear in G, zero
@@ -202,27 +204,10 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         has_wall = bool(np.any(sa != 0))
         p = _check_pressure(pressure, allow_negative=has_wall)
         n_p, n_t = p.size, G.size
-    if wall is not None:
-        pass                                   # rows: the callable at G, set above
-    elif sa.ndim == 0:
-        rows = np.full((n_p, n_t), float(sa))
-    elif sa.ndim == 1:
-        if sa.size != n_t:
-            raise ValueError(f"sigma_a must have the length of G ({n_t}) [Pa]; got shape {sa.shape}")
-        rows = np.broadcast_to(sa, (n_p, n_t)).copy()
-    else:
-        if sa.shape != (n_p, n_t):
-            raise ValueError(
-                f"sigma_a must have shape (n_p, n_t) = ({n_p}, {n_t}) [Pa]; got shape {sa.shape}"
-            )
-        rows = sa.copy()
-    if n_damp is None:
-        n_damp = 2
-    if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
-        raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
-    if level is not None and (isinstance(level, bool) or not isinstance(level, (int, np.integer))
-                              or not 0 <= level <= 10):
-        raise ValueError(f"level must be an integer in [0, 10] [-] or None; got level = {level!r}")
+    if wall is None:                           # (a callable's rows are set above)
+        rows = wall_rows(sa, "sigma_a", n_p, n_t)
+    n_damp = check_n_damp(n_damp, 2)
+    check_level(level)
     # the schedule the kernels see: the user's G, or the sampled callable's (it holds G)
     G_s, rows_s = (G, rows) if wall is None else (wall.G, np.broadcast_to(sa, (n_p, sa.size)))
     if sa.ndim == 0:

@@ -74,23 +74,22 @@ def check_hardness(value, name: str = "hardness", *, scale_dependent: bool = Fal
         return None
     if isinstance(value, HardnessTable) or (callable(value) and scale_dependent):
         return value
-    table = isinstance(value, dict) or (isinstance(value, (tuple, list)) and len(value) == 2
-                                        and all(np.ndim(v) == 1 for v in value))
-    if callable(value) or table or (np.ndim(value) > 0
-                                    if not isinstance(value, (str, bytes)) else False):
-        if not scale_dependent or not table:
-            where = ("" if scale_dependent else
-                     "; a scale-dependent hardness is taken by solve_contact and "
-                     "solve_diffusion(sigma_y=...), not here")
-            raise ValueError(f"{name} must be {SCALE_FORMS if scale_dependent else 'a number [Pa]'}"
-                             f"{where}; got {name} = {value!r}")
-        if isinstance(value, dict):
-            missing = {"zeta", "sigma_y"} - set(value)
-            if missing:
-                raise ValueError(f"{name} as a table needs the keys 'zeta' and 'sigma_y'; got "
-                                 f"keys {sorted(value)!r}")
-            return hardness_table(value["zeta"], value["sigma_y"])
+    pair = (isinstance(value, (tuple, list)) and len(value) == 2
+            and all(np.ndim(v) == 1 for v in value))
+    if scale_dependent and isinstance(value, dict):
+        missing = {"zeta", "sigma_y"} - set(value)
+        if missing:
+            raise ValueError(f"{name} as a table needs the keys 'zeta' and 'sigma_y'; got keys "
+                             f"{sorted(value)!r}")
+        return hardness_table(value["zeta"], value["sigma_y"])
+    if scale_dependent and pair:
         return hardness_table(*value)
+    if callable(value) or isinstance(value, dict) or np.ndim(value) > 0:
+        if scale_dependent:
+            raise ValueError(f"{name} must be {SCALE_FORMS}; got {name} = {value!r}")
+        raise ValueError(f"{name} must be a number [Pa]; a scale-dependent hardness is taken by "
+                         f"solve_contact and solve_diffusion(sigma_y=...), not here; got "
+                         f"{name} = {value!r}")
     arr = as_float_array(value, name, "Pa", ndim=(0,))
     check_finite(arr, name, "Pa")
     out = float(arr)

@@ -16,8 +16,8 @@ import numpy as np
 from scipy.special import erfc
 
 from ._kernels.status import GRID_CAP
-from ._kernels.strip import N_DAMP as STRIP_KERNEL_N_DAMP
-from ._validation import as_float_array, check_finite
+from ._kernels.strip import N_DAMP as STRIP_N_DAMP
+from ._validation import as_float_array, check_finite, check_level, check_n_damp, wall_rows
 from .analytic import images_area
 from .plasticity import (NOT_AVAILABLE, check_below_hardness, check_hardness,
                          check_yield_method, constant_yield, hardness_in_diffusion_time)
@@ -26,41 +26,19 @@ from .walls import WALL_BUDGET, _call, check_wall_callable, sample_wall
 
 __all__ = ["solve_yield_diffusion", "solve_yield_contact"]
 
-#: implicit-Euler half steps at the start of each strip run (its start is an exact smooth
-#: solution: one damped step keeps the ladder asymptotic, see persson_fast._kernels.strip)
-STRIP_N_DAMP = STRIP_KERNEL_N_DAMP
-
 #: a callable yield wall is sampled to this fraction of rtol: its chords bias the plastic
 #: area (a concave sigma_Y(G) lies above its chords, so more yields), by up to YIELD_KAPPA
 #: times the detachment wall's bound of walls.py (measured 3.4 for sigma_Y0 zeta^0.15 on the
 #: seed scene: 0.85 rtol in A_pl, 0.3 rtol in A at full rtol); the estimate adds that bound
 YIELD_SAMPLING = 0.25
+YIELD_KAPPA = 4.0
 #: "auto": a pressure whose distribution reaches the yield wall with a mass below this bound
 #: (:func:`yield_wall_reach`) is solved without it (images, A_pl = 0): its effect is far below
 #: the contract's absolute 1e-12
 FAR_MASS = 1e-15
-YIELD_KAPPA = 4.0
 
 _OUT = ("elastic_area", "load", "plastic_area", "plastic_load", "detached_area",
         "detached_load", "error_estimate")
-
-
-def _rows(value, name: str, n_p: int, G: np.ndarray) -> np.ndarray:
-    """A wall given as a scalar, (n_t,) or (n_p, n_t) samples, as (n_p, n_t) rows."""
-    arr = as_float_array(value, name, "Pa", ndim=(0, 1, 2))
-    check_finite(arr, name, "Pa")
-    n_t = G.size
-    if arr.ndim == 0:
-        return np.full((n_p, n_t), float(arr))
-    if arr.ndim == 1:
-        if arr.size != n_t:
-            raise ValueError(f"{name} must have the length of G ({n_t}) [Pa]; got shape "
-                             f"{arr.shape}")
-        return np.broadcast_to(arr, (n_p, n_t)).copy()
-    if arr.shape != (n_p, n_t):
-        raise ValueError(f"{name} must have shape (n_p, n_t) = ({n_p}, {n_t}) [Pa]; got shape "
-                         f"{arr.shape}")
-    return arr.copy()
 
 
 def _refuse_jumps(G: np.ndarray, rows: np.ndarray, name: str) -> None:
@@ -96,8 +74,7 @@ def solve_yield_diffusion(G, pressure, sigma_a, sigma_y, *, method, kinks, level
                          "(sigma_a = 0) only; use method='strip' or 'auto' for these walls; got "
                          f"sigma_y = {sigma_y!r} and sigma_a = {sigma_a!r}")
     return _strip(G, pressure, sigma_a, sigma_y, method=method, kinks=kinks, level=level,
-                  rtol=rtol,
-                  n_damp=n_damp, parallel=parallel, check_pressure=check_pressure)
+                  rtol=rtol, n_damp=n_damp, parallel=parallel, check_pressure=check_pressure)
 
 
 def _constant(G, pressure, hardness, kinks, level, check_pressure) -> DiffusionResult:
@@ -126,13 +103,8 @@ def _strip(G, pressure, sigma_a, sigma_y, *, method, kinks, level, rtol, n_damp,
 
     p = check_pressure(pressure, allow_negative=True)
     n_p = p.size
-    if level is not None and (isinstance(level, bool) or not isinstance(level, (int, np.integer))
-                              or not 0 <= level <= 10):
-        raise ValueError(f"level must be an integer in [0, 10] [-] or None; got level = {level!r}")
-    if n_damp is None:
-        n_damp = STRIP_N_DAMP
-    if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
-        raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
+    check_level(level)
+    n_damp = check_n_damp(n_damp, STRIP_N_DAMP)   # one damped pair: the start is exact, smooth
     if kinks is not None and not (callable(sigma_a) or callable(sigma_y)):
         raise ValueError("kinks applies to a wall given as a callable (samples are linear "
                          f"between their points already); got kinks = {kinks!r}")
@@ -149,7 +121,9 @@ def _strip(G, pressure, sigma_a, sigma_y, *, method, kinks, level, rtol, n_damp,
             wall_share += kappa * WALL_BUDGET * s.worst_ratio * tol / rtol
             user[name] = np.broadcast_to(at_user, (n_p, G.size)).copy()
         else:
-            user[name] = _rows(wall, name, n_p, G)
+            arr = as_float_array(wall, name, "Pa", ndim=(0, 1, 2))
+            check_finite(arr, name, "Pa")
+            user[name] = wall_rows(arr, name, n_p, G.size)
             _refuse_jumps(G, user[name], name)
     U = G if not sampled else np.unique(np.concatenate(sampled + [G]))
     rows = {}
@@ -175,6 +149,7 @@ def _strip(G, pressure, sigma_a, sigma_y, *, method, kinks, level, rtol, n_damp,
                          f"detaches or yields at once); got pressure[{k}] = {float(p[k])!r} "
                          f"with sigma_a = {float(sa[k, 0])!r}, sigma_y = {float(sy[k, 0])!r}")
     far = np.zeros(n_p, dtype=bool)
+    tail = np.zeros(n_p)
     if method == "auto" and level is None and not np.any(sa):
         tail = yield_wall_reach(U, p, sy)
         far = tail <= FAR_MASS
@@ -186,7 +161,7 @@ def _strip(G, pressure, sigma_a, sigma_y, *, method, kinks, level, rtol, n_damp,
         run = np.flatnonzero(~far)
         part, timings = solve_two_walls(U, p[run], np.ascontiguousarray(sa[run]),
                                         np.ascontiguousarray(sy[run]), rtol=rtol,
-                                        n_damp=int(n_damp),
+                                        n_damp=n_damp,
                                         level=-1 if level is None else int(level),
                                         parallel=parallel)
         used = "strip"
@@ -236,11 +211,8 @@ def yield_wall_reach(U, p, sy) -> np.ndarray:
     level m by G is 2 Phi(-(m - p)/sqrt(2G)) (reflection principle); the sum over the pieces
     (the first one from G = 0) bounds A_pl, and so the change of every area the wall makes.
     """
-    ends = np.concatenate([U[:1], U]) if U[0] > 0 else U
-    rows = np.concatenate([sy[:, :1], sy], axis=1) if U[0] > 0 else sy
-    if ends.size < 2:
-        ends = np.array([0.0, float(U[0])])
-        rows = np.concatenate([sy[:, :1], sy[:, :1]], axis=1)
+    ends = np.concatenate([[0.0], U])                      # the wall is sy[0] before U[0]
+    rows = np.concatenate([sy[:, :1], sy], axis=1)
     lo = np.minimum(rows[:, :-1], rows[:, 1:]) - p[:, None]
     g = np.broadcast_to(ends[1:], lo.shape)
     with np.errstate(divide="ignore"):
@@ -274,30 +246,26 @@ def solve_yield_contact(surface, pressure, z, G, *, e, dg, method, theory, hardn
     check_yield_method(method, "hardness")
     p = check_pressure(pressure, allow_negative=False)
     t0 = time.perf_counter()
-    if not callable(hardness):
-        if method == "strip":
-            res = _strip(G, p, 0.0, hardness, method="strip", kinks=None, level=None, rtol=rtol, n_damp=None,
-                         parallel=parallel, check_pressure=check_pressure,
-                         sigma_y_report=hardness)
-            out = {"elastic_area": res.area, "plastic_area": res.plastic_area,
-                   "detached_area": res.detached_area, "load": res.load}
-            err, status, used = res.error_estimate[:, -1], res.status, res.method
-        else:
-            check_below_hardness(p, hardness)
-            out = constant_yield(p, G, hardness)
-            err, status, used = np.zeros(p.size), np.zeros(p.size, dtype=np.int64), "analytic"
+    if not callable(hardness) and method != "strip":
+        check_below_hardness(p, hardness)
+        out = constant_yield(p, G, hardness)
+        err, status, used = np.zeros(p.size), np.zeros(p.size, dtype=np.int64), "analytic"
     else:
-        if method == "analytic":
-            raise ValueError("method 'analytic' serves a constant hardness only; a "
-                             "scale-dependent one needs method='strip' or 'auto'; got "
-                             f"hardness = {hardness!r}")
-        h1 = np.asarray(hardness(np.array([1.0, z[-1]])), dtype=float)
-        if h1.shape != (2,) or not np.all(np.isfinite(h1)) or np.any(h1 <= 0):
-            raise ValueError(f"hardness(zeta) must return finite values > 0 [Pa] of zeta's "
-                             f"shape; got {h1!r} at zeta = [1, {float(z[-1])!r}]")
-        wall, kinks = hardness_in_diffusion_time(hardness, surface, e, float(z[-1]))
-        res = _strip(G, p, 0.0, wall, method=method, kinks=kinks, level=None, rtol=rtol, n_damp=None,
-                     parallel=parallel, check_pressure=check_pressure)
+        wall, kinks, report = hardness, None, hardness       # a constant through "strip"
+        if callable(hardness):
+            if method == "analytic":
+                raise ValueError("method 'analytic' serves a constant hardness only; a "
+                                 "scale-dependent one needs method='strip' or 'auto'; got "
+                                 f"hardness = {hardness!r}")
+            h1 = np.asarray(hardness(np.array([1.0, z[-1]])), dtype=float)
+            if h1.shape != (2,) or not np.all(np.isfinite(h1)) or np.any(h1 <= 0):
+                raise ValueError(f"hardness(zeta) must return finite values > 0 [Pa] of zeta's "
+                                 f"shape; got {h1!r} at zeta = [1, {float(z[-1])!r}]")
+            wall, kinks = hardness_in_diffusion_time(hardness, surface, e, float(z[-1]))
+            report = None
+        res = _strip(G, p, 0.0, wall, method=method, kinks=kinks, level=None, rtol=rtol,
+                     n_damp=None, parallel=parallel, check_pressure=check_pressure,
+                     sigma_y_report=report)
         out = {"elastic_area": res.area, "plastic_area": res.plastic_area,
                "detached_area": res.detached_area, "load": res.load}
         err, status, used = res.error_estimate[:, -1], res.status, res.method

@@ -430,6 +430,17 @@ def _estimate(r_a, r_b, r_c, k_first, rtol, est):
 
 
 @njit_serial
+def _store(vals, kk, scale, out_el, out_load, out_pl, out_pl_load, out_det, out_det_load):
+    """The six outputs of one schedule point, loads back in the caller's stress unit."""
+    out_el[kk] = vals[EL]
+    out_load[kk] = vals[LOAD] * scale
+    out_pl[kk] = vals[PL]
+    out_pl_load[kk] = vals[PL_LOAD] * scale
+    out_det[kk] = vals[DET]
+    out_det_load[kk] = vals[DET_LOAD] * scale
+
+
+@njit_serial
 def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl,
                 out_pl_load, out_det, out_det_load, out_err, counts):
     """Two-wall diffusion of one nominal stress, with error control.
@@ -519,12 +530,7 @@ def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl
     while k_first < n_k and G_k[k_first] <= g_s:
         _exact_start(kind, sig0, y0, b_lin, G_k[k_first], sa_k[k_first], sy_k[k_first], res0)
         kk = k_first - 1
-        out_el[kk] = res0[EL]
-        out_load[kk] = res0[LOAD] * scale
-        out_pl[kk] = res0[PL]
-        out_pl_load[kk] = res0[PL_LOAD] * scale
-        out_det[kk] = res0[DET]
-        out_det_load[kk] = res0[DET_LOAD] * scale
+        _store(res0, kk, scale, out_el, out_load, out_pl, out_pl_load, out_det, out_det_load)
         out_err[kk] = 0.0
         k_first += 1
     if k_first >= n_k:
@@ -627,17 +633,12 @@ def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl
             status = s_k
     sb = (j - 1) % 3
     sc = j % 3
+    vals = np.empty(N_OUT)
     for k in range(k_first, n_k):
         kk = k - 1
-        vals = np.empty(N_OUT)
         for q in range(N_OUT):
             vals[q] = (4.0 * res[sc, q, k] - res[sb, q, k]) / 3.0
-        out_el[kk] = vals[EL]
-        out_load[kk] = vals[LOAD] * scale
-        out_pl[kk] = vals[PL]
-        out_pl_load[kk] = vals[PL_LOAD] * scale
-        out_det[kk] = vals[DET]
-        out_det_load[kk] = vals[DET_LOAD] * scale
+        _store(vals, kk, scale, out_el, out_load, out_pl, out_pl_load, out_det, out_det_load)
         out_err[kk] = est[k]
         if not (math.isfinite(vals[EL]) and math.isfinite(vals[DET]) and
                 math.isfinite(vals[PL]) and math.isfinite(vals[LOAD])):
