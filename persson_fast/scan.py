@@ -2,10 +2,11 @@
 
 :func:`scan` crosses a grid of scene parameters -- any keyword argument of a surface model
 (``hurst``, ``h_rms``, ``slope_rms``, ``q0``, ``q1``, ``temperature``, ...) and the solve
-parameters ``e_star``, ``work_of_adhesion``, ``energy_correction`` and
-``detachment_prefactor`` -- with a vector of nominal pressures. Every scene is one call of
-:func:`persson_fast.solve_contact` over all pressures (and, on request, one call of
-:func:`persson_fast.pull_off`), so a scan returns exactly the numbers those calls return.
+parameters ``e_star``, ``work_of_adhesion``, ``energy_correction``,
+``detachment_prefactor`` and (given a sequence) the area ``theory`` -- with a vector of
+nominal pressures. Every scene is one call of :func:`persson_fast.solve_contact` over all
+pressures (and, on request, one call of :func:`persson_fast.pull_off`), so a scan returns
+exactly the numbers those calls return.
 
 Why xarray
 ----------
@@ -72,7 +73,7 @@ from .adhesion import adhesion_zeta
 from .pulloff import pull_off as _pull_off
 from .api import solve_contact
 from .scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, default_zeta, unpack_scene
-from .theories import check_theory, check_theory_scene
+from .theories import THEORIES, check_theory, check_theory_scene
 from .methods import METHODS
 from .plasticity import NOT_AVAILABLE, check_hardness
 from .surfaces import Surface
@@ -201,7 +202,7 @@ def _solve_scene(surface, solve_kw, pressure, options):
         try:
             r = solve_contact(surface, pressure[rows], method=options["method"],
                               rtol=options["rtol"], zeta=zeta, parallel=options["parallel"],
-                              **options.get("theory", {}), **solve_kw)
+                              **solve_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
             for name in ("area", "mean_contact_pressure", "error_estimate", "area_zeta",
                          "sigma_a", "gamma_eff", "separation", "stiffness", "elastic_energy",
@@ -247,7 +248,8 @@ def _solve_scene(surface, solve_kw, pressure, options):
                 warnings.simplefilter("ignore", RuntimeWarning)
                 if solve_kw.get("hardness") is not None:
                     raise ValueError("pull_off with a yield wall (hardness) is not available")
-                adhesive_kw = {k: v for k, v in solve_kw.items() if k != "hardness"}
+                adhesive_kw = {k: v for k, v in solve_kw.items() if k in SOLVE_PARAMETERS
+                               and k != "hardness"}
                 sigma_c, info = _pull_off(surface, rtol=options["pull_off_rtol"],
                                           full_output=True, bracket=False, **adhesive_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
@@ -278,7 +280,8 @@ def solve_chunk(scenes, pressure, options):
     ----------
     scenes : list of (int, Surface, dict)
         Flat scene index, surface, and the keyword arguments of :func:`solve_contact`
-        (``e_star``, ``work_of_adhesion``, ``energy_correction``, ``detachment_prefactor``).
+        (``e_star``, ``work_of_adhesion``, ``energy_correction``, ``detachment_prefactor``,
+        ``hardness``; ``theory`` and ``theory_gamma`` for a corrected theory).
     pressure : numpy.ndarray, shape (n_p,)
         Nominal pressures. [Pa]
     options : dict
@@ -417,6 +420,37 @@ def _check_progress(progress):
                      f"got progress = {progress!r}")
 
 
+def _check_theories(theory, theory_gamma):
+    """``theory`` and ``theory_gamma`` of a scan: (list of (theory, gamma used), is_axis).
+
+    A string is one theory held fixed (:func:`check_theory`); a sequence is an axis of
+    distinct theories, ``theory_gamma`` (None or one value) going to each corrected one.
+    """
+    if isinstance(theory, str) or np.ndim(theory) == 0:
+        return [check_theory(theory, theory_gamma)], False
+    names = list(theory) if np.ndim(theory) == 1 else None
+    if names is None:
+        raise ValueError(f"theory must be one theory or a 1-D sequence of theories [-]; "
+                         f"got theory of shape {np.shape(theory)}")
+    if not names:
+        raise ValueError("theory must hold at least one theory (a sequence is an axis of the "
+                         "result) [-]; got an empty sequence")
+    valid = ", ".join(repr(t) for t in THEORIES)
+    seen = {}
+    for i, name in enumerate(names):
+        if not isinstance(name, str) or name not in THEORIES:
+            raise ValueError(f"theory[{i}] must be one of {valid} [-]; got theory[{i}] = "
+                             f"{name!r}")
+        if name in seen:
+            raise ValueError(f"theory must hold distinct theories (they label an axis) [-]; "
+                             f"got theory[{seen[name]}] = theory[{i}] = {name!r}")
+        seen[name] = i
+    if theory_gamma is not None and names == ["persson01"]:
+        check_theory("persson01", theory_gamma)          # raises: persson01 has no gamma
+    return [check_theory(str(n), None if n == "persson01" else theory_gamma)
+            for n in names], True
+
+
 #: relative distance from q1/q0 within which the last point of a user zeta grid counts as it
 #: (as in solve_contact, which sets that point to q1/q0 exactly)
 ZETA1_RTOL = 1e-12
@@ -460,7 +494,7 @@ def _check_zeta(zeta, surfaces):
 class _Grid:
     """The scene grid: dimensions, coordinates, fixed values, surfaces and solve arguments."""
 
-    def __init__(self, surface, params, solve_keywords):
+    def __init__(self, surface, params, solve_keywords, theories, theory_axis):
         if not isinstance(params, dict):
             raise ValueError(f"params must be a dict {{name: values}}; got {type(params).__name__}")
         is_instance = isinstance(surface, Surface)
@@ -478,6 +512,9 @@ class _Grid:
             if name in _RESERVED:
                 raise ValueError(f"params cannot hold {name!r}: it is an axis of the result "
                                  f"(pass the pressures as the `pressure` argument)")
+            if name in ("theory", "theory_gamma"):
+                raise ValueError(f"params cannot hold {name!r}: pass it as the `{name}` "
+                                 f"argument of scan (a sequence of theories is an axis)")
             if name not in SOLVE_PARAMETERS:
                 if is_instance:
                     raise ValueError(
@@ -498,6 +535,17 @@ class _Grid:
                 if passed[0] is not None:
                     self.fixed_coords[name] = coord
                 fixed[name] = passed[0]
+        # the theory axis, after the axes of params; the gamma each theory uses rides along
+        self.theories = theories
+        self.aux_coords = {}
+        if theory_axis:
+            self.dims.append("theory")
+            self.values["theory"] = [t for t, _ in theories]
+            self.coords["theory"] = np.empty(len(theories), dtype=object)
+            self.coords["theory"][:] = self.values["theory"]
+            self.aux_coords["theory_gamma"] = (
+                "theory", np.array([math.nan if g is None else g for _, g in theories]),
+                {"long_name": "theory_gamma used (NaN: persson01, no parameter)", "units": "-"})
         # solve parameters: from params, or from the keywords of scan
         for name in SOLVE_PARAMETERS:
             given = solve_keywords[name]
@@ -524,7 +572,8 @@ class _Grid:
         self.fixed = fixed
         self.shape = tuple(len(self.values[d]) for d in self.dims)
         self.n_scenes = int(np.prod(self.shape, dtype=np.int64)) if self.shape else 1
-        self.surface_dims = [d for d in self.dims if d not in SOLVE_PARAMETERS]
+        self.surface_dims = [d for d in self.dims
+                             if d not in SOLVE_PARAMETERS and d != "theory"]
         self._build(surface, is_instance)
 
     def _label(self, index_tuple) -> str:
@@ -563,6 +612,9 @@ class _Grid:
                     kw[name] = self.checked[name][idx[self.dims.index(name)]]
                 else:
                     kw[name] = self.fixed[name]
+            t, g = self.theories[idx[-1] if "theory" in self.dims else 0]
+            if t != "persson01":
+                kw.update(theory=t, theory_gamma=g)
             self.scenes.append((flat, cache[key], kw))
             self.labels.append(self._label(idx))
 
@@ -837,11 +889,20 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         than about 2 s, when stderr is a terminal; True / False force it on / off. A callable
         is called as ``progress(done, total)`` (in scenes) after each scene or chunk.
 
-    theory, theory_gamma : str, float or None
-        The area theory of every solve (as in :func:`~persson_fast.solve_contact`: "persson01",
-        the default, or a corrected one, "yp08", "wm17", "xu24", for scenes without
-        adhesion) and its gamma (None: the published default). Held fixed over the scan and
-        recorded in ``attrs``; to compare theories, scan once per theory. [-]
+    theory : str or sequence of str
+        The area theory of the solves (as in :func:`~persson_fast.solve_contact`:
+        "persson01", the default, or a corrected one, "yp08", "wm17", "xu24", for scenes
+        without adhesion or hardness). A string is held fixed and recorded in ``attrs``. A
+        sequence of distinct theories is an axis ``theory`` of the result, after the axes of
+        ``params``; each of its entries gives bitwise the numbers of a scan with that theory
+        held fixed, and ``attrs["theory"]`` and ``attrs["theory_gamma"]`` are then "". [-]
+    theory_gamma : float or None
+        The gamma of the corrected theories (None: each one's published default,
+        ``persson_fast.theories.DEFAULT_GAMMA``). Held fixed: recorded in ``attrs``. With a
+        theory axis it goes to every corrected theory of the axis and not to "persson01",
+        which has no parameter (a value with "persson01" alone is a ValueError); the
+        coordinate ``theory_gamma`` along ``theory`` records the gamma each theory used
+        (NaN for "persson01"). [-]
     hardness : float or None
         The yield wall of every scene, unless scanned in ``params`` (values: a constant
         hardness [Pa], or None / NaN for none; see ``solve_contact(hardness=...)``). Held
@@ -857,8 +918,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     Returns
     -------
     xarray.Dataset
-        Dimensions: the scanned parameters in the order of ``params``, then ``pressure``
-        (then ``zeta`` with ``profiles``). Variables:
+        Dimensions: the scanned parameters in the order of ``params``, then ``theory`` (with
+        a sequence of theories), then ``pressure`` (then ``zeta`` with ``profiles``).
+        Variables:
 
         * ``area`` (..., pressure) -- A(zeta1)/A0. [-]
         * ``mean_contact_pressure`` (..., pressure) -- load / area, NaN without contact. [Pa]
@@ -936,7 +998,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         raise ValueError(f"method must be one of {', '.join(repr(m) for m in METHODS)}; "
                          f"got method = {method!r}")
     rtol = _check_rtol(rtol)
-    theory, theory_gamma = check_theory(theory, theory_gamma)
+    theories, theory_axis = _check_theories(theory, theory_gamma)
     pull_off_rtol = rtol if pull_off_rtol is None else _check_rtol(pull_off_rtol, "pull_off_rtol")
     p = _check_pressure(pressure)
     for name, flag in (("profiles", profiles), ("pull_off", pull_off),
@@ -946,16 +1008,17 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     chunks = _check_positive_int(chunks, "chunks")
     workers = _check_positive_int(workers, "workers")
     progress = _check_progress(progress)
-    grid = _Grid(surface, params, solve_keywords)
+    grid = _Grid(surface, params, solve_keywords, theories, theory_axis)
     zeta = _check_zeta(zeta, grid.surfaces)
     adhesive = [kw["work_of_adhesion"] > 0 for _, _, kw in grid.scenes]
     if method == "analytic" and any(adhesive):
         i = adhesive.index(True)
         raise ValueError(f"method 'analytic' has no closed form with adhesion; the scene "
                          f"{grid.labels[i]} has work_of_adhesion > 0; use method='auto' or 'cn'")
-    if theory != "persson01" and any(adhesive):
-        i = adhesive.index(True)
-        check_theory_scene(theory, grid.scenes[i][2]["work_of_adhesion"])
+    corrected = [kw.get("theory", "persson01") != "persson01" for _, _, kw in grid.scenes]
+    j = next((k for k, c in enumerate(corrected) if c and adhesive[k]), None)
+    if j is not None:
+        check_theory_scene(grid.scenes[j][2]["theory"], grid.scenes[j][2]["work_of_adhesion"])
     yielding = [kw.get("hardness") is not None for _, _, kw in grid.scenes]
     if any(yielding):
         i = yielding.index(True)
@@ -963,9 +1026,11 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         if j is not None:
             raise ValueError(f"the scene {grid.labels[j]} has hardness and work_of_adhesion "
                              f"> 0: {NOT_AVAILABLE}")
-        if theory != "persson01":
+        j = next((k for k, c in enumerate(corrected) if c and yielding[k]), None)
+        if j is not None:
             raise ValueError(f"hardness applies to the original theory; the scene "
-                             f"{grid.labels[i]} has hardness and theory = {theory!r}")
+                             f"{grid.labels[j]} has hardness and theory = "
+                             f"{grid.scenes[j][2]['theory']!r}")
         if separation:
             raise ValueError(f"separation=True needs elastic scenes: the scene "
                              f"{grid.labels[i]} has hardness (the separation is not derived "
@@ -974,8 +1039,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
             raise ValueError(f"method {method!r} cannot carry a yield wall (hardness); use "
                              f"'auto', 'analytic' (a constant one) or 'strip' (the scene "
                              f"{grid.labels[i]} has hardness)")
-    if separation and (theory != "persson01" or any(adhesive)):
-        which = (f"theory = {theory!r}" if theory != "persson01" else
+    if separation and (any(corrected) or any(adhesive)):
+        which = (f"theory = {grid.scenes[corrected.index(True)][2]['theory']!r}"
+                 if any(corrected) else
                  f"the scene {grid.labels[adhesive.index(True)]} has work_of_adhesion > 0")
         raise ValueError(f"separation=True needs scenes without adhesion and the original "
                          f"theory (persson01): the separation is not derived otherwise here; "
@@ -989,9 +1055,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
                "zeta_adhesive": zeta_adhesive, "profile_zeta": profile_zeta,
                "profiles": bool(profiles), "pull_off": bool(pull_off),
                "pull_off_rtol": pull_off_rtol, "parallel": None,
-               "separation": bool(separation), "yield_wall": any(yielding),
-               "theory": {} if theory == "persson01" else {"theory": theory,
-                                                          "theory_gamma": theory_gamma}}
+               "separation": bool(separation), "yield_wall": any(yielding)}
     if workers is None:
         import numba
 
@@ -1023,7 +1087,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     wall = time.perf_counter() - t0
     ds = _assemble(xr, grid, p, results, options, profile_zeta,
                    {"surface_model": grid.factory_name, "method": method, "rtol": rtol,
-                    "theory": theory, "theory_gamma": "" if theory_gamma is None else theory_gamma,
+                    "theory": "" if theory_axis else theories[0][0],
+                    "theory_gamma": ("" if theory_axis or theories[0][1] is None else
+                                     theories[0][1]),
                     "hardness": ("" if hardness is None or "hardness" in params else
                                  hardness if isinstance(hardness, float) else repr(hardness)),
                     "pull_off_rtol": pull_off_rtol if pull_off else "",
@@ -1100,6 +1166,7 @@ def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
     for name, value in grid.fixed_coords.items():
         units = {"units": PARAMETER_UNITS[name]} if name in PARAMETER_UNITS else {}
         coords[name] = ((), value, units)
+    coords.update(grid.aux_coords)
     if options["profiles"]:
         n_z = profile_zeta.size
         per_z = per_p + ("zeta",)

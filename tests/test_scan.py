@@ -474,3 +474,92 @@ def test_scan_theory_with_adhesion_is_refused():
     with pytest.raises(ValueError, match="theory must be one of"):
         pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6}, [1e6],
                 e_star=1e9, theory="yp09")
+
+
+# --- the area theory as an axis --------------------------------------------------------------
+
+THEORY_AXIS = ["persson01", "yp08", "wm17", "xu24"]
+SA_ONE = {"hurst": [0.5, 0.8], "q0": 1e4, "q1": 1e9, "h_rms": 1e-6}
+P_THEORY = np.array([-1e5, 0.0, 1e5, 1e6, 1e7])                  # tension included [Pa]
+
+
+def test_scan_theory_axis_equals_fixed_scans():
+    """Each entry of a theory axis is bitwise the scan with that theory held fixed."""
+    ds = scan(pf.SelfAffine, SA_ONE, P_THEORY, e_star=1e9, theory=THEORY_AXIS, profiles=True,
+              pull_off=True, workers=2)
+    assert ds.area.dims == ("hurst", "theory", "pressure")
+    assert ds.area_zeta.dims == ("hurst", "theory", "pressure", "zeta")
+    assert list(ds.theory.values) == THEORY_AXIS
+    assert ds.theory_gamma.dims == ("theory",)
+    np.testing.assert_array_equal(ds.theory_gamma.values, [np.nan, 0.42, 5 / 9, 0.42])
+    assert ds.attrs["theory"] == "" and ds.attrs["theory_gamma"] == ""
+    for t in THEORY_AXIS:
+        fixed = scan(pf.SelfAffine, SA_ONE, P_THEORY, e_star=1e9, theory=t, profiles=True,
+                     pull_off=True, workers=2)
+        got = ds.sel(theory=t, drop=True)
+        _assert_datasets_bitwise_equal(got, fixed)
+        assert all(got[name].dims == fixed[name].dims for name in fixed.data_vars)
+        if t != "persson01":
+            assert float(ds.theory_gamma.sel(theory=t)) == fixed.attrs["theory_gamma"]
+    assert np.all(ds.area.sel(theory="yp08").values[:, 2:]
+                  > ds.area.sel(theory="persson01").values[:, 2:])
+
+
+def test_scan_theory_axis_matches_solve_contact():
+    """A theory axis with one theory_gamma: it goes to the corrected theories only."""
+    p = [1e5, 1e6]
+    ds = scan(pf.SelfAffine, SA_ONE, p, e_star=1e9, theory=("xu24", "persson01", "wm17"),
+              theory_gamma=0.6)
+    np.testing.assert_array_equal(ds.theory_gamma.values, [0.6, np.nan, 0.6])
+    for h, t in [(0.5, "xu24"), (0.8, "persson01"), (0.8, "wm17")]:
+        s = pf.SelfAffine(hurst=h, q0=1e4, q1=1e9, h_rms=1e-6)
+        ref = pf.solve_contact(s, p, e_star=1e9, theory=t,
+                               theory_gamma=None if t == "persson01" else 0.6)
+        assert ref.theory == t
+        np.testing.assert_array_equal(ds.area.sel(hurst=h, theory=t).values, ref.area)
+
+
+def test_distributed_theory_axis_equals_local_bitwise(client):
+    kw = dict(e_star=1e9, theory=THEORY_AXIS, theory_gamma=0.7, progress=False)
+    local = scan(pf.SelfAffine, SA_ONE, P_THEORY, **kw)
+    dist = scan(pf.SelfAffine, SA_ONE, P_THEORY, client=client, chunks=3, **kw)
+    assert dist.attrs["execution"] == "distributed, 3 tasks of <= 3 scenes"
+    _assert_datasets_bitwise_equal(dist, local)
+    assert not _scan_tasks(client)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    ({"theory": []}, r"theory must hold at least one theory .*empty"),
+    ({"theory": ["yp08", "wm17", "yp08"]},
+     r"theory must hold distinct theories .*theory\[0\] = theory\[2\] = 'yp08'"),
+    ({"theory": ["persson01", "yp09"]}, r"theory\[1\] must be one of .*got theory\[1\] = 'yp09'"),
+    ({"theory": ["persson01", None]}, r"theory\[1\] must be one of"),
+    ({"theory": [["yp08"], ["wm17"]]}, r"1-D sequence of theories .*shape \(2, 1\)"),
+    ({"theory": ["persson01"], "theory_gamma": 0.5}, r"theory_gamma must be None for "),
+    ({"theory": ["yp08", "wm17"], "theory_gamma": 0.005},
+     r"theory_gamma must lie in .*theory='wm17'.*0\.005"),
+    ({"theory": ["persson01", "wm17"], "separation": True},
+     r"separation=True needs .*theory = 'wm17'"),
+])
+def test_scan_theory_axis_refusals(kwargs, match):
+    with pytest.raises(ValueError, match=match):
+        scan(pf.SelfAffine, SA_ONE, [1e6], e_star=1e9, **kwargs)
+
+
+def test_scan_theory_axis_keeps_the_per_theory_refusals():
+    """Adhesion and hardness with a corrected theory of the axis: today's ValueErrors."""
+    adhesive = {**SA_ONE, "work_of_adhesion": [0.0, 0.05]}
+    for t in ("yp08", "xu24"):
+        with pytest.raises(ValueError) as fixed:
+            scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, theory=t)
+        with pytest.raises(ValueError) as axis:
+            scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, theory=["persson01", t])
+        assert str(axis.value) == str(fixed.value)
+    with pytest.raises(ValueError, match=r"hardness applies to the original theory; .*"
+                                         r"theory='wm17'\) has hardness and theory = 'wm17'"):
+        scan(pf.SelfAffine, SA_ONE, [1e6], e_star=1e9, hardness=3e8,
+             theory=["persson01", "wm17"])
+    with pytest.raises(ValueError, match=r"params cannot hold 'theory'"):
+        scan(pf.SelfAffine, {**SA_ONE, "theory": ["yp08", "wm17"]}, [1e6], e_star=1e9)
+    ds = scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, rtol=1e-3, theory=["persson01"])
+    assert ds.area.dims == ("hurst", "work_of_adhesion", "theory", "pressure")
