@@ -91,3 +91,28 @@ def test_theory_stepped_baseline(benchmark, scene, theory):
     t = _per_pressure(benchmark, pp.size)
     if t is not None and theory != "xu24":
         benchmark.extra_info["s_per_pressure_at_equal_error"] = t * err / our_err
+
+
+#: the adhesive seed scene's pressures of test_theory_adhesive_seed (tension to 1 MPa) [Pa]
+ADHESIVE_PRESSURES = np.linspace(-2e5, 1e6, 16)
+
+
+@pytest.mark.parametrize("theory", ("persson01", "yp08", "wm17"))
+def test_theory_adhesive_seed(benchmark, theory):
+    """The seed scene with adhesion (Delta gamma = 0.06 J/m^2), 16 pressures, rtol 1e-4, one
+    thread: the original fixed point against the corrected diffusions solved with it
+    (``extra_info``: time and fixed-point iterations per pressure, A at p = 0)."""
+    s, e = pf.seed_scene(), pf.seed_e_star()
+
+    def run():
+        return pf.solve_contact(s, ADHESIVE_PRESSURES, e_star=e,
+                                work_of_adhesion=pf.SEED_WORK_OF_ADHESION, theory=theory,
+                                rtol=1e-4, parallel=False)
+
+    run()                                                     # compile outside the timing
+    res = benchmark(run)
+    assert np.all(res.status == 0), res.message
+    if benchmark.stats is not None:
+        benchmark.extra_info["s_per_pressure"] = benchmark.stats.stats.median / ADHESIVE_PRESSURES.size
+    benchmark.extra_info["iterations_per_pressure"] = float(np.mean(res.iterations))
+    benchmark.extra_info["area_at_zero_load"] = float(np.interp(0.0, ADHESIVE_PRESSURES, res.area))

@@ -22,6 +22,7 @@ import numpy as np
 
 from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
 from ._kernels.status import NOT_CONVERGED, RTOL_NOT_MET
+from ._kernels.theories import WM17, YP08
 from ._validation import as_float_array, check_finite
 from .methods import check_serves, choose_auto, variant_of
 from .results import ContactResult, per_contact_area, summarize_status
@@ -32,12 +33,15 @@ from .zeta_grid import _scene_arrays, adhesion_zeta, coarsen_zeta, refine_zeta
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "ADHESION_DEFAULTS"]
 
+#: the corrected theories the fixed point serves, and their kernel codes
+THEORY_CODES = {"yp08": YP08, "wm17": WM17}
+
 #: iteration controls of the fixed point (Anderson depth 0 = plain relaxation)
 ADHESION_DEFAULTS = {"max_iter": 100, "m_hist": 5, "omega": 0.5, "n_damp": 2}
 
 
 def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None, variant=0,
-         onset=True):
+         onset=True, theory=0, theory_gamma=1.0):
     n_p, n_z = p_scaled.size, G.size
     outs = [np.zeros((n_p, n_z)) for _ in range(8)]
     status = np.zeros(n_p, dtype=np.int64)
@@ -53,14 +57,16 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
         with prange_guard() if mode == "prange" else contextlib.nullcontext():
             kernel(variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
                    controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs],
-                   status[:1], iterations[:1], residual[:1], bool(onset))
+                   status[:1], iterations[:1], residual[:1], bool(onset), int(theory),
+                   float(theory_gamma))
         timings["compile"] = time.perf_counter() - t0
     args = [variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled), rtol,
             controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
-            np.ascontiguousarray(x_init), *outs, status, iterations, residual, bool(onset)]
+            np.ascontiguousarray(x_init), *outs, status, iterations, residual, bool(onset),
+            int(theory), float(theory_gamma)]
     t0 = time.perf_counter()
     run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args, (6, 12),
-             tuple(range(13, len(args) - 1)), n_p, parallel)
+             tuple(range(13, 24)), n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
     return outs, status, iterations, residual, timings
 
@@ -308,7 +314,8 @@ class _ZetaLadder:
 def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
                            energy_correction=None, detachment_prefactor=DETACHMENT_PREFACTOR,
                            method="auto", rtol=1e-6, parallel=None, controls=None,
-                           zeta_given=False, start=None, onset=True) -> ContactResult:
+                           zeta_given=False, start=None, onset=True, theory="persson01",
+                           theory_gamma=None) -> ContactResult:
     """Adhesive contact of one scene at many pressures (called by :func:`solve_contact`).
 
     Arguments are validated by :func:`persson_fast.solve_contact`; ``zeta`` is the grid of
@@ -317,7 +324,10 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     (continuation); default the full-contact detachment stress. ``onset``: shape the
     square-root onset of sigma_a where gamma_eff changes sign (see
     :func:`persson_fast._kernels.adhesion.wall_solve`); pull_off's checks pass False, the
-    discretisation of its branch follower.
+    discretisation of its branch follower. ``theory``, ``theory_gamma``: the area theory
+    (validated): "persson01", or "yp08"/"wm17" with their gamma, whose corrected diffusion
+    dT/dG = S(A) the fixed point solves together with sigma_a (see
+    :func:`persson_fast._kernels.adhesion.solve_adhesive_one`).
     """
     if method == "auto":
         method = choose_auto("adhesion")
@@ -340,8 +350,10 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
             status=np.zeros(0, dtype=np.int64), success=True, message="ok", timings={},
             elastic_energy_zeta=rows, iterations=np.zeros(0, dtype=np.int64), residual=none,
             sticky=np.zeros(0, dtype=bool), load_zeta=rows, detached_load_zeta=rows,
-            zeta_error=none)
+            zeta_error=none, theory=theory, theory_gamma=theory_gamma)
     gamma_s = -1.0 if energy_correction is None else float(energy_correction)
+    theory_code = THEORY_CODES.get(theory, 0)
+    theory_g = 1.0 if theory_gamma is None else float(theory_gamma)
     timings = {}
 
     def fixed_point(grid, start_pa, rows):
@@ -350,7 +362,7 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
         x_init = None if start_pa is None else start_pa / scale
         outs, status, iterations, residual, tim = _run(G, c, wa, wb, gamma_s, p[rows] / scale,
                                                        rtol, parallel, ctl, x_init, variant,
-                                                       onset)
+                                                       onset, theory_code, theory_g)
         for key, val in tim.items():
             timings[key] = timings.get(key, 0.0) + val
         outs = [o * (scale if k in (1, 4, 6) else 1.0) for k, o in enumerate(outs)]
@@ -389,4 +401,5 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
         message=message, timings=timings, elastic_energy_zeta=u * work_of_adhesion,
         iterations=iterations, residual=residual, sticky=g[:, 0] > 0,
         load_zeta=load, detached_load_zeta=det_l, zeta_error=zeta_err,
+        theory=theory, theory_gamma=theory_gamma,
     )

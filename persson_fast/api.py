@@ -355,6 +355,23 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     return replace(res, status=status, success=success, message=message)
 
 
+def _flag_unconfirmed_separation(res, theory):
+    """Flag separated tensions of a corrected theory: no pull-off stress of the corrected
+    theories is computed here (:func:`persson_fast.pull_off` follows the original theory's
+    branch), so the end of their contact branch cannot be checked, and a separated tension
+    gets status LOST_CONTACT (contact not excluded) instead of a silent A = 0."""
+    from ._kernels.status import LOST_CONTACT
+
+    sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
+    if not np.any(sep):
+        return res
+    status = np.where(sep, LOST_CONTACT, res.status)
+    success, message = summarize_status(status)
+    message += (f"; separated tensions are not checked against a pull-off stress for "
+                f"theory={theory!r} (pull_off follows the original theory)")
+    return replace(res, status=status, success=success, message=message)
+
+
 def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
                   detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None,
                   parallel=None, adhesion_controls=None, theory="persson01",
@@ -408,10 +425,15 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     theory : str
         The area theory: "persson01" (default, the original; this path is unchanged by the
         option), or a corrected one, "yp08" (Yang & Persson 2008), "wm17" (Wang & Mueser
-        2017), "xu24" (Xu et al. 2024), see :mod:`persson_fast.theories`. The corrected
-        theories are served for scenes without adhesion (a ValueError otherwise), by the
-        near-closed form (``method`` "auto" or "analytic"; relative accuracy ~1e-12
-        whatever ``rtol``); ``result.theory`` records it.
+        2017), "xu24" (Xu et al. 2024), see :mod:`persson_fast.theories`. Without adhesion
+        the corrected theories are a near-closed form (``method`` "auto" or "analytic";
+        relative accuracy ~1e-12 whatever ``rtol``). With adhesion, yp08 and wm17 are the
+        corrected diffusion dT/dG = S(A) solved together with the detachment stress
+        (error-controlled to ``rtol`` like the original; ``result.G`` stays the original
+        G); separated tensions then come back flagged (status 9), since ``pull_off``
+        follows the original theory only; xu24 (full magnification, no walls) and the
+        corrected theories with ``hardness`` raise a ValueError. ``result.theory`` records
+        the theory.
     theory_gamma : float or None
         gamma of the corrected theory; None (default) takes its published default (0.42
         for yp08 and xu24, 5/9 for wm17), which ``result.theory_gamma`` records. Range
@@ -461,6 +483,8 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
                                     energy_correction)
     theory, theory_gamma = check_theory(theory, theory_gamma)
+    if theory != "persson01":
+        check_theory_scene(theory, float(dg), hardness)
     if hardness is not None:
         hardness = check_hardness(hardness, scale_dependent=True)
         z = _check_zeta(zeta, surface)
@@ -472,8 +496,7 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     if method == "strip":
         raise ValueError("method 'strip' is the two-wall solver: it needs a yield wall "
                          "(hardness=...); use 'auto' or 'cn' without one")
-    if theory != "persson01":
-        check_theory_scene(theory, float(dg))
+    if theory != "persson01" and dg == 0:
         if method not in ("auto", "analytic"):
             raise ValueError(
                 f"method must be 'auto' or 'analytic' for theory={theory!r} [-] (the corrected "
@@ -490,8 +513,12 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
                                      energy_correction=energy_correction,
                                      detachment_prefactor=float(beta), method=method,
                                      rtol=rtol, parallel=parallel, controls=adhesion_controls,
-                                     zeta_given=zeta is not None)
-        res = _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol)
+                                     zeta_given=zeta is not None, theory=theory,
+                                     theory_gamma=theory_gamma)
+        if theory == "persson01":
+            res = _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol)
+        else:
+            res = _flag_unconfirmed_separation(res, theory)
         return replace(res, separation_source=ADHESION_REFUSED.format(
             where="solve_contact", dg=float(dg)))
     p = _check_pressure(pressure, allow_negative=False)

@@ -249,7 +249,7 @@ def build_parser() -> argparse.ArgumentParser:
     g = ct.add_argument_group("area theory")
     g.add_argument("--theory", choices=THEORY_NAMES,
                    help="area theory: persson01 (the original, default) or a corrected one "
-                        "(yp08, wm17, xu24; scenes without adhesion)")
+                        "(yp08, wm17 with or without adhesion; xu24 without adhesion)")
     g.add_argument("--theory-gamma", type=float, metavar="THEORY_GAMMA",
                    help="the corrected theory's parameter gamma (default: the published one)")
     pr = ct.add_mutually_exclusive_group()

@@ -891,8 +891,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
 
     theory : str or sequence of str
         The area theory of the solves (as in :func:`~persson_fast.solve_contact`:
-        "persson01", the default, or a corrected one, "yp08", "wm17", "xu24", for scenes
-        without adhesion or hardness). A string is held fixed and recorded in ``attrs``. A
+        "persson01", the default, or a corrected one: "yp08" and "wm17" for scenes without
+        hardness, "xu24" for scenes without adhesion or hardness; ``pull_off`` with
+        adhesion needs "persson01"). A string is held fixed and recorded in ``attrs``. A
         sequence of distinct theories is an axis ``theory`` of the result, after the axes of
         ``params``; each of its entries gives bitwise the numbers of a scan with that theory
         held fixed, and ``attrs["theory"]`` and ``attrs["theory_gamma"]`` are then "". [-]
@@ -1016,9 +1017,15 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         raise ValueError(f"method 'analytic' has no closed form with adhesion; the scene "
                          f"{grid.labels[i]} has work_of_adhesion > 0; use method='auto' or 'cn'")
     corrected = [kw.get("theory", "persson01") != "persson01" for _, _, kw in grid.scenes]
-    j = next((k for k, c in enumerate(corrected) if c and adhesive[k]), None)
-    if j is not None:
-        check_theory_scene(grid.scenes[j][2]["theory"], grid.scenes[j][2]["work_of_adhesion"])
+    for k in range(len(corrected)):
+        if corrected[k] and adhesive[k]:
+            check_theory_scene(grid.scenes[k][2]["theory"], grid.scenes[k][2]["work_of_adhesion"])
+            if pull_off:
+                raise ValueError(
+                    f"pull_off=True follows the original theory's contact branch only: the "
+                    f"scene {grid.labels[k]} has work_of_adhesion > 0 and theory = "
+                    f"{grid.scenes[k][2]['theory']!r}; scan the pull-off with "
+                    f"theory='persson01'")
     yielding = [kw.get("hardness") is not None for _, _, kw in grid.scenes]
     if any(yielding):
         i = yielding.index(True)

@@ -1,4 +1,4 @@
-"""Corrected area theories without walls: Yang-Persson, Wang-Muser and Xu et al.
+"""Corrected area theories: Yang-Persson, Wang-Muser and Xu et al.
 
 The original theory (Persson, J. Chem. Phys. 115, 3840 (2001); ``"persson01"``) gives the
 relative contact area A = erf(p / sqrt(2 Vc)), where Vc(zeta) = 2 G(zeta) is the variance of
@@ -53,6 +53,16 @@ A -> p / sqrt(pi gamma G1): the original small-load slope 1 / sqrt(pi G1) times
 theory, and so is xu24 with gamma = 1: both are then computed by the original's closed form
 (their tables reduce to W = 0 to rounding, which the tests check as well).
 
+With adhesion (yp08, wm17): in the diffusion picture the corrections rescale the diffusion
+time by the current contact area, dP/dG = S(A(G)) d^2P/dsigma^2, i.e. the original diffusion
+in the time T(G) = int_0^G S(A) dG'. With the detachment wall -sigma_a(zeta) the area is no
+longer a function of p/(2 sqrt(G)), so T is solved together with sigma_a: the adhesive fixed
+point (:func:`persson_fast._kernels.adhesion.solve_adhesive_one`) iterates the pair
+(sigma_a, T) at the zeta grid's nodes, T by the trapezoid rule on the grid (second order, as
+the elastic energy U_el, so the zeta ladder's extrapolation and error control apply
+unchanged). Eqs. 8-9 keep their form with the corrected A(zeta). xu24 has no diffusion and
+serves no wall; no corrected theory serves the yield wall yet.
+
 Valid gamma: S(0) = gamma is the factor of the spread at vanishing contact; gamma <= 0 stops
 it (V would stop growing or shrink, and A would not be defined), so gamma > 0; for wm17 the
 quartic S must stay positive on [0, 1], which needs gamma > ``WM17_GAMMA_MIN`` = 0.01019.
@@ -78,10 +88,13 @@ __all__ = ["THEORIES", "CORRECTED_THEORIES", "DEFAULT_GAMMA", "WM17_GAMMA_MIN", 
 
 #: every area theory solve_contact knows; "persson01" is the original (the default)
 THEORIES = ("persson01", "yp08", "wm17", "xu24")
-#: the corrected ones (served without adhesion)
+#: the corrected ones
 CORRECTED_THEORIES = ("yp08", "wm17", "xu24")
-#: theories that can serve a scene with adhesion (the detachment wall)
-ADHESIVE_THEORIES = ("persson01",)
+#: theories that can serve a scene with adhesion (the detachment wall): the original and the
+#: corrected diffusions (xu24 is an algebraic relation at full magnification, no diffusion)
+ADHESIVE_THEORIES = ("persson01", "yp08", "wm17")
+#: theories that can serve a scene with a yield wall
+YIELD_THEORIES = ("persson01",)
 #: the published default gamma of each corrected theory [-]
 DEFAULT_GAMMA = {"yp08": 0.42, "wm17": 5.0 / 9.0, "xu24": 0.42}
 #: below this gamma the wm17 factor gamma - (2/9) A^2 + (11/9 - gamma) A^4 turns negative
@@ -140,25 +153,30 @@ def check_theory(theory, theory_gamma=None) -> tuple[str, float | None]:
 
 
 def check_theory_scene(theory: str, work_of_adhesion: float, hardness=None) -> None:
-    """Refuse a corrected theory for a scene with walls (adhesion, yield) it cannot serve."""
-    walls = []
+    """Refuse a theory for a scene with walls (adhesion, yield) it cannot serve.
+
+    Adhesion (the detachment wall) is served by :data:`ADHESIVE_THEORIES` (the corrected
+    diffusions yp08 and wm17 beside the original); the yield wall by :data:`YIELD_THEORIES`;
+    xu24 (an algebraic relation at full magnification) by neither.
+    """
+    walls, serving = [], set(THEORIES)
     if work_of_adhesion > 0:
         walls.append(f"work_of_adhesion = {work_of_adhesion!r} J/m^2 (the detachment wall)")
+        serving &= set(ADHESIVE_THEORIES)
     if hardness is not None:
         walls.append("hardness (the yield wall)")
-    if theory == "persson01" or not walls:
+        serving &= set(YIELD_THEORIES)
+    if theory in serving:
         return
-    serve = ", ".join(repr(t) for t in ADHESIVE_THEORIES)
+    serve = ", ".join(repr(t) for t in THEORIES if t in serving)
     if theory == "xu24":
-        raise ValueError(
-            f"theory='xu24' is defined only at full magnification without walls (an algebraic "
-            f"relation at zeta1, no diffusion that could carry a wall) [-]; got "
-            f"{'; '.join(walls)}. For this scene use theory={serve}, or set "
-            f"work_of_adhesion=0 for the corrected theories 'yp08', 'wm17', 'xu24'")
-    raise ValueError(
-        f"theory={theory!r}: the corrected theories ('yp08', 'wm17', 'xu24') are served for "
-        f"scenes without adhesion so far [-]; got {'; '.join(walls)}. For this scene use "
-        f"theory={serve}, or set work_of_adhesion=0")
+        why = ("is defined only at full magnification without walls (an algebraic relation "
+               "at zeta1, no diffusion that could carry a wall)")
+    else:
+        why = (f"does not serve the yield wall yet (served by "
+               f"{', '.join(repr(t) for t in YIELD_THEORIES)})")
+    raise ValueError(f"theory={theory!r} {why} [-]; got {'; '.join(walls)}. For this scene use "
+                     f"theory={serve}")
 
 
 def correction_factor(theory: str, theory_gamma, area):

@@ -567,14 +567,17 @@ def test_cli_contact_theory(tmp_path, capsys):
     assert np.all(ref.area > base.area)
 
 
-def test_cli_theory_with_adhesion_is_refused(capsys):
+def test_cli_theory_with_adhesion(capsys):
+    """wm17 serves adhesion; xu24 is refused with the reason."""
     from persson_fast import cli
     args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
             "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e6", "--theory", "wm17",
-            "--work-of-adhesion", "0.05"]
-    rc = cli.main(args)
+            "--work-of-adhesion", "0.05", "--rtol", "1e-3"]
+    assert cli.main(args) == 0
+    capsys.readouterr()
+    rc = cli.main(args[:-5] + ["xu24"] + args[-4:])
     err = capsys.readouterr().err
-    assert rc != 0 and "without adhesion" in err
+    assert rc != 0 and "defined only at full magnification" in err
 
 
 def test_cli_theory_from_config(tmp_path, capsys):

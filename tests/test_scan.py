@@ -467,10 +467,14 @@ def test_scan_theory_matches_solve_contact():
 
 
 def test_scan_theory_with_adhesion_is_refused():
-    with pytest.raises(ValueError, match="without adhesion"):
+    with pytest.raises(ValueError, match="defined only at full magnification without walls"):
         pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6,
                                 "work_of_adhesion": [0.0, 0.05]}, [1e6], e_star=1e9,
-                theory="yp08")
+                theory="xu24")
+    with pytest.raises(ValueError, match="pull_off=True follows the original theory"):
+        pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6,
+                                "work_of_adhesion": [0.0, 0.05]}, [1e6], e_star=1e9,
+                theory=["persson01", "yp08"], pull_off=True)
     with pytest.raises(ValueError, match="theory must be one of"):
         pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6}, [1e6],
                 e_star=1e9, theory="yp09")
@@ -547,14 +551,14 @@ def test_scan_theory_axis_refusals(kwargs, match):
 
 
 def test_scan_theory_axis_keeps_the_per_theory_refusals():
-    """Adhesion and hardness with a corrected theory of the axis: today's ValueErrors."""
+    """Adhesion and hardness with a corrected theory of the axis: the ValueErrors of a
+    fixed-theory scan (xu24 anywhere on the axis, also after a theory that serves)."""
     adhesive = {**SA_ONE, "work_of_adhesion": [0.0, 0.05]}
-    for t in ("yp08", "xu24"):
-        with pytest.raises(ValueError) as fixed:
-            scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, theory=t)
-        with pytest.raises(ValueError) as axis:
-            scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, theory=["persson01", t])
-        assert str(axis.value) == str(fixed.value)
+    with pytest.raises(ValueError) as fixed:
+        scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, theory="xu24")
+    with pytest.raises(ValueError) as axis:
+        scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, theory=["persson01", "yp08", "xu24"])
+    assert str(axis.value) == str(fixed.value)
     with pytest.raises(ValueError, match=r"hardness applies to the original theory; .*"
                                          r"theory='wm17'\) has hardness and theory = 'wm17'"):
         scan(pf.SelfAffine, SA_ONE, [1e6], e_star=1e9, hardness=3e8,

@@ -258,11 +258,12 @@ def test_gamma_with_persson01_is_refused():
 
 
 @pytest.mark.parametrize("theory", ["yp08", "wm17"])
-def test_adhesion_refused_for_corrected(theory):
-    with pytest.raises(ValueError, match=r"served for scenes without adhesion so far.*"
-                                         r"work_of_adhesion = 0.05 J/m\^2.*'persson01'"):
-        pf.solve_contact(_surface(0.6), 1e6, e_star=E_STAR, work_of_adhesion=0.05,
-                         theory=theory)
+def test_adhesion_served_for_corrected_diffusions(theory):
+    """yp08 and wm17 carry the detachment wall (tests/test_theories_adhesion.py checks the
+    numbers); the result records the theory."""
+    res = pf.solve_contact(_surface(0.6), 1e6, e_star=E_STAR, work_of_adhesion=0.05,
+                           theory=theory, rtol=1e-3)
+    assert res.theory == theory and res.status[0] == 0 and res.area[0] > 0
 
 
 def test_adhesion_refused_for_xu24():

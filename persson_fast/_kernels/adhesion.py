@@ -29,6 +29,7 @@ import numpy as np
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
 from .diffusion import SMOOTH_WALL, solve_variant
+from .theories import correction_factor
 
 #: iterations without halving the best residual after which the fixed point gives up
 STALL_ITERATIONS = 10
@@ -235,10 +236,29 @@ def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l,
 
 
 @njit_serial
-def _residual_norm(f, x, sigma0):
+def corrected_times(G, area, code, gamma, out_t):
+    """The corrected diffusion times over G[-1] of an area profile (yp08, wm17).
+
+    The corrected theories spread the stress as dV/dVc = S(A) (see
+    :mod:`persson_fast.theories`): in the diffusion picture dT/dG = S(A(G)), T the time of
+    the original diffusion equation. T is the trapezoid rule on the zeta grid's nodes
+    (second order in the grid, as U_el, which the zeta ladder's extrapolation assumes).
+    """
+    n = G.shape[0]
+    scale = G[n - 1]
+    out_t[0] = 0.0
+    s_prev = correction_factor(code, gamma, area[0])
+    for i in range(1, n):
+        s_i = correction_factor(code, gamma, area[i])
+        out_t[i] = out_t[i - 1] + 0.5 * (s_prev + s_i) * ((G[i] - G[i - 1]) / scale)
+        s_prev = s_i
+
+
+@njit_serial
+def _residual_norm(f, x, sigma0, lo, hi):
     num = 0.0
     den = abs(sigma0)
-    for i in range(f.shape[0]):
+    for i in range(lo, hi):
         if abs(f[i]) > num:
             num = abs(f[i])
         if abs(x[i]) > den:
@@ -251,7 +271,7 @@ def _residual_norm(f, x, sigma0):
 @njit_serial
 def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_hist,
                        omega, x_init, out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
-                       out_det_load, out_error, onset=True):
+                       out_det_load, out_error, onset=True, theory=0, theory_gamma=1.0):
     """Self-consistent contact of one nominal pressure (scaled units).
 
     Parameters
@@ -275,6 +295,12 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     onset : bool -- shape the square-root onset of sigma_a where gamma_eff changes sign
         (:func:`wall_solve`; default); False: the wall linear between the nodes everywhere
         (the discretisation the pull-off branch follower uses).
+    theory, theory_gamma : int, float -- 0 (default): the original theory; YP08 or WM17 of
+        :mod:`persson_fast._kernels.theories`: the corrected diffusion dT/dG = S(A(G))
+        (:func:`corrected_times`), solved jointly with sigma_a: the Anderson iterate is
+        (sigma_a, T/G[-1]) at the nodes, the diffusion of each iterate runs on its times T
+        (kept non-decreasing), and the fixed point stops when both residuals, sigma_a's and
+        that of T/G[-1] (relative to its largest value), are below the tolerance.
 
     Returns
     -------
@@ -284,13 +310,18 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     tol = 0.1 * rtol
     if tol < 1e-13:
         tol = 1e-13
-    x = np.empty(n)
-    fx = np.empty(n)
-    f = np.empty(n)
-    x_prev = np.empty(n)
-    f_prev = np.empty(n)
-    dX = np.zeros((m_hist if m_hist > 0 else 1, n))
-    dF = np.zeros((m_hist if m_hist > 0 else 1, n))
+    corrected = theory != 0
+    m = 2 * n if corrected else n        # the iterate: sigma_a, then T/G[-1] if corrected
+    x = np.empty(m)
+    fx = np.empty(m)
+    f = np.empty(m)
+    x_prev = np.empty(m)
+    f_prev = np.empty(m)
+    dX = np.zeros((m_hist if m_hist > 0 else 1, m))
+    dF = np.zeros((m_hist if m_hist > 0 else 1, m))
+    T = G                                # the diffusion times of the iterate
+    if corrected:
+        T = np.empty(n)
     area = np.empty(n)
     load = np.empty(n)
     det_a = np.empty(n)
@@ -307,6 +338,9 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             g[i] = 1.0          # no crossing known before the first update
     else:
         detachment_update(ones, c, wa, wb, gamma_s, u, g, x)
+    if corrected:                        # start from the original times (S(1) = 1)
+        for i in range(n):
+            x[n + i] = G[i] / G[n - 1]
     status = st.OK
     residual = np.inf
     n_hist = 0
@@ -328,21 +362,28 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             rtol_it = 0.1 * residual
         if rtol_it < rtol or final_pass:
             rtol_it = rtol
+        if corrected:
+            for i in range(n):
+                T[i] = x[n + i] * G[n - 1]
         if onset:
-            kstat = wall_solve(variant, G, x, g, sigma0, rtol_it, n_damp, area, load, det_a,
-                               det_l, err, counts)
+            kstat = wall_solve(variant, T, x[:n], g, sigma0, rtol_it, n_damp, area, load,
+                               det_a, det_l, err, counts)
         else:
-            kstat = solve_variant(variant | SMOOTH_WALL, G, x, sigma0, rtol_it, np.int64(-1),
-                                  n_damp, area, load, det_a, det_l, err, counts)
+            kstat = solve_variant(variant | SMOOTH_WALL, T, x[:n], sigma0, rtol_it,
+                                  np.int64(-1), n_damp, area, load, det_a, det_l, err, counts)
         if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
             break
         # other flags (resolution cap, far leak, jump) of an intermediate iterate are not
         # fatal: the status of the final solve is what the result reports
         detachment_update(area, c, wa, wb, gamma_s, u, g, fx)
-        for i in range(n):
+        if corrected:
+            corrected_times(G, area, theory, theory_gamma, fx[n:])
+        for i in range(m):
             f[i] = fx[i] - x[i]
-        residual = _residual_norm(f, x, sigma0)
+        residual = _residual_norm(f, x, sigma0, 0, n)
+        if corrected:
+            residual = max(residual, _residual_norm(f, x, 0.0, n, m))
         if not math.isfinite(residual):
             status = st.NONFINITE
             break
@@ -371,19 +412,19 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             final_pass = True     # converged on a loose inner solve: confirm at rtol
         if area[n - 1] <= 0.0 and sigma0 + x[0] <= 0.0 and fx[0] <= x[0]:
             # separated and the wall keeps closing: no contact is the fixed point
-            for i in range(n):
+            for i in range(m):
                 x[i] = fx[i]
             pinned = False
             continue
         # Anderson (type II) step, or plain relaxation when m_hist == 0
         if m_hist > 0 and it > 1:
             slot = (it - 2) % m_hist
-            for i in range(n):
+            for i in range(m):
                 dX[slot, i] = x[i] - x_prev[i]
                 dF[slot, i] = f[i] - f_prev[i]
             if n_hist < m_hist:
                 n_hist += 1
-        for i in range(n):
+        for i in range(m):
             x_prev[i] = x[i]
             f_prev[i] = f[i]
         if m_hist > 0 and n_hist > 0:
@@ -392,11 +433,11 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             for a in range(n_hist):
                 for b in range(n_hist):
                     s = 0.0
-                    for i in range(n):
+                    for i in range(m):
                         s += dF[a, i] * dF[b, i]
                     M[a, b] = s
                 s = 0.0
-                for i in range(n):
+                for i in range(m):
                     s += dF[a, i] * f[i]
                 r[a] = s
             trace = 0.0
@@ -406,7 +447,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
                 M[a, a] += 1e-10 * trace + 1e-300
             solve_small(M, r)
             coef = r
-            for i in range(n):
+            for i in range(m):
                 corr = 0.0
                 for a in range(n_hist):
                     corr += coef[a] * (dX[a, i] + omega * dF[a, i])
@@ -414,7 +455,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
                 if x[i] < 0.0:
                     x[i] = 0.0
         else:
-            for i in range(n):
+            for i in range(m):
                 x[i] = x[i] + omega * f[i]
         # safeguard: a step must not carry a contact state across the wall (y0 <= 0), where
         # separation would lock in; backtrack towards the last iterate and drop the history
@@ -423,11 +464,16 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         if sigma0 + x_prev[0] > y_min and sigma0 + x[0] <= y_min:
             pinned = True
             for _ in range(60):
-                for i in range(n):
+                for i in range(m):
                     x[i] = x_prev[i] + 0.5 * (x[i] - x_prev[i])
                 if sigma0 + x[0] > y_min:
                     break
             n_hist = 0
+        if corrected:          # the times of the next iterate: from 0, non-decreasing
+            x[n] = 0.0
+            for i in range(n + 1, m):
+                if x[i] < x[i - 1]:
+                    x[i] = x[i - 1]
     if (not converged and status == st.OK and sigma0 < 0.0
             and (lost >= LOST_ITERATIONS or area[n - 1] <= rtol)):
         # nominal tension and the iteration has left the contact branch: the surfaces
@@ -462,13 +508,14 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
 
 def _adhesive_sweep(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
                     omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error, status,
-                    iterations, residual, onset):
+                    iterations, residual, onset, theory, theory_gamma):
     """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,)."""
     for k in prange(pressures.shape[0]):
         s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
                                         n_damp, max_iter, m_hist, omega, x_init[k], area[k],
                                         sigma_a[k], g[k], u[k], load[k], det_area[k],
-                                        det_load[k], error[k], onset)
+                                        det_load[k], error[k], onset, theory,
+                                        theory_gamma)
         status[k] = s
         iterations[k] = it
         residual[k] = res
