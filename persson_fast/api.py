@@ -27,6 +27,7 @@ from .scene import (
     _check_scene_args,
     _check_zeta,
     default_zeta,
+    _diffusion_times,
     unpack_scene,
 )
 
@@ -55,6 +56,10 @@ def warmup(prange: bool = False) -> dict:
 
 def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1))
+    # the usual valid case in two reductions (min and max propagate nan); otherwise the
+    # checks below, which name the offending value
+    if p.size and p.max() < np.inf and (p.min() > -np.inf if allow_negative else p.min() >= 0):
+        return np.atleast_1d(p).astype(np.float64)
     check_finite(p, "pressure", "Pa")
     if not allow_negative:
         bad = p < 0
@@ -488,8 +493,7 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     if hardness is not None:
         hardness = check_hardness(hardness, scale_dependent=True)
         z = _check_zeta(zeta, surface)
-        G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
-        G[0] = 0.0
+        G = _diffusion_times(surface, z, e, default_grid=zeta is None)
         return solve_yield_contact(surface, pressure, z, G, e=e, dg=float(dg), method=method,
                                    theory=theory, hardness=hardness, rtol=rtol,
                                    parallel=parallel, check_pressure=_check_pressure)
@@ -522,20 +526,23 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         return replace(res, separation_source=ADHESION_REFUSED.format(
             where="solve_contact", dg=float(dg)))
     p = _check_pressure(pressure, allow_negative=False)
-    G = np.asarray(surface.diffusion_time(z * surface.q0, e), dtype=float)
-    G[0] = 0.0
+    G = _diffusion_times(surface, z, e, default_grid=zeta is None)
     use = choose_auto("linear") if method == "auto" else method
     t0 = time.perf_counter()
     if use == "analytic":
         # the area at zeta1 now, its profile in zeta (n_p x n_z erf calls, 40x the work of the
         # answer) only when read: area_zeta[:, -1] is bitwise this area
-        area = np.asarray(analytic.images_area(p, G[-1]), dtype=float).reshape(p.shape)
+        area = analytic._images_area_at(p, G[-1])
         area_z = Deferred(_images_profile, p, G)
-        load = np.where(area > 0, p, 0.0)
+        contact = area > 0
+        # the load in contact is the pressure where A > 0 (usually at every pressure: a copy)
+        load = p.copy() if contact.all() else np.where(contact, p, 0.0)
         det_a = 1.0 - area
         det_l = load - p
         err = np.zeros(p.size)
         status = np.zeros(p.size, dtype=np.int64)
+        mean_p = per_contact_area(p, area)
+        mean_s = mean_p.copy()              # load / A: p / A where A > 0, nan elsewhere
         timings = {"solve": time.perf_counter() - t0}
     else:
         out, timings = run_sweep(G, np.zeros((p.size, z.size)), p, rtol=rtol, method=use,
@@ -547,13 +554,14 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         err = out["error_estimate"][:, -1]
         status = out["status"]
         area = area_z[:, -1].copy()
+        mean_p, mean_s = per_contact_area(p, area), per_contact_area(load, area)
     success, message = summarize_status(status)
     zeros = (p.size, z.size)
     return ContactResult(
         pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=Deferred(np.zeros, zeros),
         gamma_eff=Deferred(np.zeros, zeros),
-        load=load, mean_contact_pressure=per_contact_area(p, area),
-        mean_contact_stress=per_contact_area(load, area), detached_area=det_a, detached_load=det_l,
+        load=load, mean_contact_pressure=mean_p, mean_contact_stress=mean_s,
+        detached_area=det_a, detached_load=det_l,
         error_estimate=err, method=use, status=status, success=success, message=message,
         timings=timings,
         separation_source=functools.partial(contact_fields, surface, e, energy_correction, parallel),

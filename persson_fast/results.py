@@ -11,7 +11,7 @@ from ._kernels.status import STATUS_MESSAGES
 def summarize_status(status: np.ndarray) -> tuple[bool, str]:
     """(success, message) from per-pressure integer status codes."""
     status = np.asarray(status)
-    if status.size == 0 or np.all(status == 0):
+    if status.size == 0 or not status.any():
         return True, "ok"
     parts = []
     for code in np.unique(status[status != 0]):
@@ -52,8 +52,11 @@ def per_contact_area(x, area):
     """x / area where there is contact, nan where A = 0 (mean stresses in the contact)."""
     x = np.asarray(x, dtype=float)
     area = np.asarray(area, dtype=float)
-    safe = np.where(area > 0, area, 1.0)
-    return np.where(area > 0, x / safe, np.nan)
+    contact = area > 0
+    if contact.all():                        # the usual case: the same quotients, one pass
+        return np.asarray(x / area)
+    safe = np.where(contact, area, 1.0)
+    return np.where(contact, x / safe, np.nan)
 
 
 @dataclass(frozen=True, repr=False)

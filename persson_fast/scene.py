@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
-from .surfaces import check_e_star
+from .surfaces import E_STAR_WARN_BELOW, Surface, check_e_star
 
 __all__ = ["Scene", "DETACHMENT_PREFACTOR", "default_zeta", "ZETA_PER_DECADE"]
 
@@ -43,6 +43,31 @@ def default_zeta(surface, per_decade: int = ZETA_PER_DECADE) -> np.ndarray:
     return z
 
 
+def _kept(surface, key, compute, e_star=None):
+    """``compute()``, kept on a :class:`Surface` instance under ``key`` (see
+    ``Surface._memoized``). Computed anew for other surface objects, and for an ``e_star``
+    [Pa] below ``E_STAR_WARN_BELOW``, whose every G(q) evaluation warns."""
+    if isinstance(surface, Surface) and (e_star is None or e_star >= E_STAR_WARN_BELOW):
+        return surface._memoized(key, compute)
+    return compute()
+
+
+def _diffusion_times(surface, z, e_star: float, *, default_grid: bool = False) -> np.ndarray:
+    """G(zeta) on the magnifications ``z`` with G[0] = 0 exactly, a fresh array. [Pa^2]
+
+    ``default_grid=True`` says that ``z`` is :func:`default_zeta` of the surface: its G is
+    then computed once per surface and ``e_star`` [Pa] and copied.
+    """
+    def compute():
+        G = np.asarray(surface.diffusion_time(z * surface.q0, e_star), dtype=float)
+        G[0] = 0.0
+        return G
+
+    if not default_grid:
+        return compute()
+    return _kept(surface, ("G", e_star), compute, e_star).copy()
+
+
 #: relative distance from zeta1 = q1/q0 within which the last point of a user zeta grid is
 #: taken as zeta1 (and set to it exactly)
 ZETA1_RTOL = 1e-12
@@ -57,7 +82,7 @@ def _check_zeta(zeta, surface) -> np.ndarray:
     relative ``ZETA1_RTOL`` of zeta1 is set to zeta1 exactly (``np.logspace`` rounding).
     """
     if zeta is None:
-        return default_zeta(surface)
+        return _kept(surface, "zeta", lambda: default_zeta(surface)).copy()
     z = as_float_array(zeta, "zeta", "-", ndim=(1,))
     check_finite(z, "zeta", "-")
     zeta1 = surface.q1 / surface.q0
@@ -115,8 +140,11 @@ def _check_scene_finite(surface, e: float, dg: float, beta: float) -> None:
     """Refuse an e_star / work_of_adhesion for which the scene overflows float64 (see
     :func:`_check_scene_args`); G(zeta) <= G(q1), sigma_a(zeta) <= its value at q1 and the
     U_el quadrature weights <= U_el(1)/dgamma, so the full-band values bound the grid's."""
-    with np.errstate(all="ignore"):
-        G1 = float(np.asarray(surface.diffusion_time(surface.q1, e), dtype=float))
+    def full_band():
+        with np.errstate(all="ignore"):
+            return float(np.asarray(surface.diffusion_time(surface.q1, e), dtype=float))
+
+    G1 = _kept(surface, ("G1", e), full_band, e)
     if not np.isfinite(G1):
         raise ValueError(f"e_star must keep the diffusion time G(q1) of the surface finite [Pa]; "
                          f"got e_star = {e!r}, which gives G(q1) = {G1!r} [Pa^2]")

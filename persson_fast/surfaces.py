@@ -272,6 +272,35 @@ class Surface(abc.ABC):
     q0: float
     q1: float
 
+    # --- values derived once per instance ----------------------------------------------------
+    def __setattr__(self, name, value):
+        # a parameter set after construction drops what was derived from the old ones
+        self.__dict__.pop("_memo", None)
+        object.__setattr__(self, name, value)
+
+    def __getstate__(self):
+        state = self.__dict__.copy()
+        state.pop("_memo", None)          # derived values are not part of the surface
+        return state
+
+    def _memoized(self, key, compute):
+        """``compute()`` the first time ``key`` is asked for, the kept value after that.
+
+        For values the entry points derive from the surface alone on every call (the default
+        magnification grid, G(zeta) on it for one e_star). Setting an attribute forgets them
+        all; the parameters are not meant to be changed in place (as a ``TabulatedPSD``
+        table's derived segment data would not follow either). The kept value is shared:
+        callers hand out copies of arrays.
+        """
+        memo = self.__dict__.get("_memo")
+        if memo is None:
+            memo = self.__dict__["_memo"] = {}
+        try:
+            return memo[key]
+        except KeyError:
+            value = memo[key] = compute()
+            return value
+
     # --- what a subclass supplies ------------------------------------------------------------
     @abc.abstractmethod
     def _psd_inside(self, q: np.ndarray) -> np.ndarray:

@@ -42,3 +42,30 @@ def test_deferred_result_pickles_copies_and_compares():
         assert "no_such_attribute" in str(exc)
     else:
         raise AssertionError("expected an AttributeError")
+
+
+def _fields(r):
+    return {name: np.asarray(getattr(r, name)).tobytes()
+            for name in ("pressure", "area", "zeta", "G", "area_zeta", "load", "detached_area",
+                         "detached_load", "mean_contact_pressure", "mean_contact_stress",
+                         "error_estimate", "status")}
+
+
+def test_grid_kept_on_the_surface_follows_it():
+    """The default zeta grid and G(zeta) kept on the surface between calls: the results are
+    bitwise those of a fresh surface, a result's arrays are its own, a parameter set later is
+    seen, and the kept values are not pickled with the surface."""
+    s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    p = np.concatenate([[0.0, 5e-324], np.geomspace(1e3, 1e8, 20)])
+    first = pf.solve_contact(s, p, e_star=1e9)
+    expected = _fields(first)
+    first.G[:] = 0.0
+    first.zeta[:] = 0.0
+    assert _fields(pf.solve_contact(s, p, e_star=1e9)) == expected
+    assert "_memo" in s.__dict__ and "_memo" not in pickle.loads(pickle.dumps(s)).__dict__
+    s.C0 = 4.0 * s.C0
+    changed = pf.solve_contact(s, p, e_star=1e9)
+    fresh = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, C0=s.C0)
+    assert _fields(changed) == _fields(pf.solve_contact(fresh, p, e_star=1e9))
+    before = pf.solve_contact(pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6), p, e_star=1e9)
+    np.testing.assert_allclose(changed.G, 4.0 * before.G, rtol=1e-14)
