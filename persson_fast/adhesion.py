@@ -27,6 +27,7 @@ from ._validation import as_float_array, check_finite
 from .methods import check_serves, choose_auto, variant_of
 from .results import ContactResult, per_contact_area, summarize_status
 from .scene import DETACHMENT_PREFACTOR
+from .yield_api import FAR_MASS, yield_wall_reach
 from .sweep import choose_parallel, is_compiled, prange_guard, run_rows
 
 from .zeta_grid import _scene_arrays, adhesion_zeta, coarsen_zeta, refine_zeta
@@ -41,9 +42,14 @@ ADHESION_DEFAULTS = {"max_iter": 100, "m_hist": 5, "omega": 0.5, "n_damp": 2}
 
 
 def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None, variant=0,
-         onset=True, theory=0, theory_gamma=1.0):
+         onset=True, theory=0, theory_gamma=1.0, sy=None):
+    """The compiled fixed point of every pressure: outputs (8 arrays (n_p, n_z): area,
+    sigma_a, g, u, load, detached area and load, error; with a yield wall ``sy`` (n_p, n_z)
+    two more, the plastic area and load), status, iterations, residual and timings."""
     n_p, n_z = p_scaled.size, G.size
-    outs = [np.zeros((n_p, n_z)) for _ in range(8)]
+    outs = [np.zeros((n_p, n_z)) for _ in range(8 if sy is None else 10)]
+    yield_args = [None, None, None] if sy is None else [np.ascontiguousarray(sy, dtype=float),
+                                                       outs[8], outs[9]]
     status = np.zeros(n_p, dtype=np.int64)
     iterations = np.zeros(n_p, dtype=np.int64)
     residual = np.zeros(n_p)
@@ -56,17 +62,19 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
         t0 = time.perf_counter()
         with prange_guard() if mode == "prange" else contextlib.nullcontext():
             kernel(variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
-                   controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs],
+                   controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs[:8]],
                    status[:1], iterations[:1], residual[:1], bool(onset), int(theory),
-                   float(theory_gamma))
+                   float(theory_gamma), yield_args[0],
+                   *[None if a is None else a[:1] for a in yield_args[1:]])
         timings["compile"] = time.perf_counter() - t0
     args = [variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled), rtol,
             controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
-            np.ascontiguousarray(x_init), *outs, status, iterations, residual, bool(onset),
-            int(theory), float(theory_gamma)]
+            np.ascontiguousarray(x_init), *outs[:8], status, iterations, residual, bool(onset),
+            int(theory), float(theory_gamma), *yield_args]
     t0 = time.perf_counter()
-    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args, (6, 12),
-             tuple(range(13, 24)), n_p, parallel)
+    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args,
+             (6, 12) + (() if sy is None else (27,)),
+             tuple(range(13, 24)) + (() if sy is None else (28, 29)), n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
     return outs, status, iterations, residual, timings
 
@@ -80,6 +88,17 @@ def warm_adhesion(prange: bool = False) -> None:
     ctl = _controls(None)
     for par in ((False, "prange") if prange else (False,)):
         _run(G, c, w, w, -1.0, np.array([1.0, 2.0]), 1e-2, par, ctl)  # 1 row runs serially
+
+
+def warm_adhesive_yield(prange: bool = False) -> None:
+    """Compile (or load) the adhesive sweep with a yield wall (the two-wall solver inside)."""
+    G = np.array([0.0, 1.0, 2.0])
+    c = np.array([0.1, 0.2, 0.3])
+    w = np.array([0.1, 0.1])
+    ctl = _controls(None)
+    sy = np.full((2, 3), 10.0)
+    for par in ((False, "prange") if prange else (False,)):
+        _run(G, c, w, w, -1.0, np.array([1.0, 2.0]), 1e-2, par, ctl, sy=sy)
 
 
 def _controls(overrides):
@@ -286,7 +305,8 @@ class _ZetaLadder:
         """Profiles on the level-1 nodes: the extrapolation of the two finest levels of each
         pressure (the finer alone where one of them separated), and the error estimates."""
         n_z = self.zeta.size
-        res = [np.zeros((self.n_p, n_z)) for _ in range(8)]
+        n_out = len(self.levels[1][0])
+        res = [np.zeros((self.n_p, n_z)) for _ in range(n_out)]
         err = np.zeros((self.n_p, n_z))
         zeta_err = np.zeros(self.n_p)
         est, split, _ = self._end_estimate()
@@ -294,7 +314,7 @@ class _ZetaLadder:
             K = self.last[r]
             fine = [o[r, ::2 ** (K - 1)] for o in self.levels[K][0]]
             prev = [o[r, ::2 ** (K - 2)] for o in self.levels[K - 1][0]]
-            for j in range(8):
+            for j in range(n_out):
                 res[j][r] = fine[j] if split[r] else (4.0 * fine[j] - prev[j]) / 3.0
             # an extrapolated profile outside [0, 1] is a zeta-grid error: clip it and charge
             # the overshoot to the error estimate
@@ -304,18 +324,42 @@ class _ZetaLadder:
             err[r] = np.abs(fine[7]) + np.abs(fine[0] - prev[0]) / 3.0
             zeta_err[r] = max(est[r] - abs(fine[7][-1]), over.max(), 0.0)
             err[r, -1] = max(est[r], over.max())
-        area_z, sa, g, u, load, det_a, det_l, _ = res
+        area_z, sa, g, u, load, det_a, det_l = res[:7]
         # sigma_a = c sqrt(max(gamma_eff, 0)): extrapolation must not make it negative, nor
         # non-zero where the extrapolated gamma_eff is not positive
         sa = np.where(g > 0, np.maximum(sa, 0.0), 0.0)
-        return area_z, sa, g, u, load, det_a, det_l, err, zeta_err
+        if n_out > 8:                 # the plastic area and load (a yield wall)
+            res[8] = np.clip(res[8], 0.0, area_z)
+        return (area_z, sa, g, u, load, det_a, det_l, err, zeta_err) + tuple(res[8:])
+
+
+def yield_wall_on(hardness, zeta) -> np.ndarray:
+    """sigma_Y [Pa] at the magnifications ``zeta`` of a validated hardness (a number or a
+    callable of zeta), checked finite and > 0."""
+    if not callable(hardness):
+        return np.full(zeta.size, float(hardness))
+    sy = np.asarray(hardness(zeta), dtype=float)
+    if sy.shape != zeta.shape or not np.all(np.isfinite(sy)) or np.any(sy <= 0):
+        raise ValueError(f"hardness(zeta) must return finite values > 0 [Pa] of zeta's shape; "
+                         f"got {sy!r} at zeta = {zeta!r}")
+    return sy
+
+
+def _plastic_fields(area, plastic, hardness) -> dict:
+    """The yield fields of an adhesive result (none without a yield wall)."""
+    if hardness is None:
+        return {}
+    pl, pl_load = plastic
+    return {"elastic_area": area - pl[:, -1], "plastic_area": pl[:, -1].copy(),
+            "plastic_area_zeta": pl, "plastic_load": pl_load[:, -1].copy(),
+            "hardness": hardness}
 
 
 def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
                            energy_correction=None, detachment_prefactor=DETACHMENT_PREFACTOR,
                            method="auto", rtol=1e-6, parallel=None, controls=None,
                            zeta_given=False, start=None, onset=True, theory="persson01",
-                           theory_gamma=None) -> ContactResult:
+                           theory_gamma=None, hardness=None) -> ContactResult:
     """Adhesive contact of one scene at many pressures (called by :func:`solve_contact`).
 
     Arguments are validated by :func:`persson_fast.solve_contact`; ``zeta`` is the grid of
@@ -327,7 +371,12 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     discretisation of its branch follower. ``theory``, ``theory_gamma``: the area theory
     (validated): "persson01", or "yp08"/"wm17" with their gamma, whose corrected diffusion
     dT/dG = S(A) the fixed point solves together with sigma_a (see
-    :func:`persson_fast._kernels.adhesion.solve_adhesive_one`).
+    :func:`persson_fast._kernels.adhesion.solve_adhesive_one`). ``hardness``: None, or the
+    validated yield wall sigma_Y(zeta) (a number [Pa] or a callable of zeta): then every
+    solve of the fixed point is the two-wall solver, sigma_Y taken at the zeta grid's nodes
+    (linear in G between them, as the detachment wall; the zeta ladder controls the error),
+    and the result carries ``elastic_area``, ``plastic_area``, ``plastic_area_zeta`` and
+    ``plastic_load`` (``area`` the real contact area, ``load`` the elastic part's).
     """
     if method == "auto":
         method = choose_auto("adhesion")
@@ -360,12 +409,20 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
         G, c, wa, wb, scale, G_dim = _scene_arrays(surface, grid, e_star, work_of_adhesion,
                                                    detachment_prefactor)
         x_init = None if start_pa is None else start_pa / scale
+        sy = None
+        if hardness is not None:
+            sy = np.broadcast_to(yield_wall_on(hardness, grid), (rows.size, grid.size)).copy()
+            # a yield wall the distribution cannot reach (reflection-principle bound without
+            # the detachment wall, which only removes mass): solved without it (inf)
+            far = yield_wall_reach(G_dim, p[rows], sy) <= FAR_MASS
+            sy[far] = np.inf
+            sy = sy / scale
         outs, status, iterations, residual, tim = _run(G, c, wa, wb, gamma_s, p[rows] / scale,
                                                        rtol, parallel, ctl, x_init, variant,
-                                                       onset, theory_code, theory_g)
+                                                       onset, theory_code, theory_g, sy)
         for key, val in tim.items():
             timings[key] = timings.get(key, 0.0) + val
-        outs = [o * (scale if k in (1, 4, 6) else 1.0) for k, o in enumerate(outs)]
+        outs = [o * (scale if k in (1, 4, 6, 9) else 1.0) for k, o in enumerate(outs)]
         return outs, status, iterations, residual, G_dim
 
     if start is not None:
@@ -378,7 +435,7 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     ladder = _ZetaLadder(zeta, p.size, fixed_point)
     ladder.solve(start)
     ladder.refine_until(rtol)
-    area_z, sa, g, u, load, det_a, det_l, err, zeta_err = ladder.profiles()
+    area_z, sa, g, u, load, det_a, det_l, err, zeta_err, *plastic = ladder.profiles()
     status, iterations, residual = ladder.status, ladder.iterations, ladder.residual
     G_dim = ladder.G_dim
     area = area_z[:, -1].copy()
@@ -401,5 +458,5 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
         message=message, timings=timings, elastic_energy_zeta=u * work_of_adhesion,
         iterations=iterations, residual=residual, sticky=g[:, 0] > 0,
         load_zeta=load, detached_load_zeta=det_l, zeta_error=zeta_err,
-        theory=theory, theory_gamma=theory_gamma,
+        theory=theory, theory_gamma=theory_gamma, **_plastic_fields(area, plastic, hardness),
     )

@@ -11,11 +11,12 @@ from . import analytic
 from ._kernels.status import GRID_CAP
 from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
                           check_nondecreasing, check_nonnegative, wall_rows)
-from .adhesion import solve_adhesive_contact, warm_adhesion
+from .adhesion import (solve_adhesive_contact, warm_adhesion, warm_adhesive_yield,
+                       yield_wall_on)
 from .methods import check_method, check_serves, choose_auto
 from .results import (ContactResult, Deferred, DiffusionResult, per_contact_area,
                       summarize_status)
-from .plasticity import check_hardness
+from .plasticity import check_below_hardness, check_hardness
 from .yield_api import solve_yield_contact, solve_yield_diffusion
 from .separation import ADHESION_REFUSED, contact_fields, warm_separation
 from .walls import check_wall_callable, sample_wall
@@ -52,6 +53,9 @@ def warmup(prange: bool = False) -> dict:
     t0 = time.perf_counter()
     solve_diffusion(np.array([0.0, 1.0]), [0.5], 0.5, sigma_y=1.0, method="strip", rtol=1e-3)
     timings["strip"] = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    warm_adhesive_yield(prange)
+    timings["adhesion_yield"] = time.perf_counter() - t0
     return timings
 
 def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
@@ -360,11 +364,12 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     return replace(res, status=status, success=success, message=message)
 
 
-def _flag_unconfirmed_separation(res, theory):
-    """Flag separated tensions of a corrected theory: no pull-off stress of the corrected
-    theories is computed here (:func:`persson_fast.pull_off` follows the original theory's
-    branch), so the end of their contact branch cannot be checked, and a separated tension
-    gets status LOST_CONTACT (contact not excluded) instead of a silent A = 0."""
+def _flag_unconfirmed_separation(res, why):
+    """Flag separated tensions of a scene whose pull-off stress is not computed here (a
+    corrected theory, a yield wall: :func:`persson_fast.pull_off` follows the original
+    theory's elastic branch), so the end of their contact branch cannot be checked: a
+    separated tension gets status LOST_CONTACT (contact not excluded) instead of a silent
+    A = 0. ``why`` ends the message."""
     from ._kernels.status import LOST_CONTACT
 
     sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
@@ -372,9 +377,41 @@ def _flag_unconfirmed_separation(res, theory):
         return res
     status = np.where(sep, LOST_CONTACT, res.status)
     success, message = summarize_status(status)
-    message += (f"; separated tensions are not checked against a pull-off stress for "
-                f"theory={theory!r} (pull_off follows the original theory)")
+    message += f"; separated tensions are not checked against a pull-off stress: {why}"
     return replace(res, status=status, success=success, message=message)
+
+
+def _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction, beta, method,
+                            rtol, parallel, controls, theory, theory_gamma, hardness):
+    """solve_contact with a yield wall and adhesion, or with a yield wall and a corrected
+    theory (arguments validated but pressure, zeta and method): the adhesive fixed point with
+    the two-wall solver inside. Without adhesion (a corrected theory: the fixed point then
+    iterates the corrected time T alone) the detachment wall is 0 (prefactor 0) and the
+    adhesive profiles of the result are zero."""
+    what = "with adhesion" if dg > 0 else f"with theory={theory!r}"
+    if method not in ("auto", "strip"):
+        raise ValueError(f"method must be 'auto' or 'strip' for a yield wall {what} [-] (the "
+                         f"fixed point runs the two-wall solver 'strip'); got method = "
+                         f"{method!r}")
+    p = _check_pressure(pressure, allow_negative=dg > 0)
+    z = _check_zeta(zeta, surface) if zeta is not None else None
+    h1 = float(yield_wall_on(hardness, np.array([1.0]))[0])
+    check_below_hardness(p, h1, "hardness at zeta = 1")
+    res = solve_adhesive_contact(surface, p, z, e_star=e, work_of_adhesion=dg if dg > 0 else 1.0,
+                                 energy_correction=energy_correction,
+                                 detachment_prefactor=beta if dg > 0 else 0.0,
+                                 method="auto", rtol=rtol, parallel=parallel, controls=controls,
+                                 zeta_given=zeta is not None, theory=theory,
+                                 theory_gamma=theory_gamma, hardness=hardness)
+    res = replace(res, method="strip", separation_source=(
+        f"separation, stiffness and elastic_energy are derived for elastic contact with the "
+        f"original theory only; got hardness = {hardness!r}, work_of_adhesion = {dg!r} and "
+        f"theory = {theory!r}"))
+    if dg == 0:
+        zeros = np.zeros_like(res.area_zeta)
+        return replace(res, sigma_a=zeros, gamma_eff=zeros.copy(), elastic_energy_zeta=None,
+                       sticky=None)
+    return _flag_unconfirmed_separation(res, "pull_off has no yield wall")
 
 
 def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
@@ -490,6 +527,11 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     theory, theory_gamma = check_theory(theory, theory_gamma)
     if theory != "persson01":
         check_theory_scene(theory, float(dg), hardness)
+    if hardness is not None and (dg > 0 or theory != "persson01"):
+        return _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction,
+                                       float(beta), method, rtol, parallel, adhesion_controls,
+                                       theory, theory_gamma,
+                                       check_hardness(hardness, scale_dependent=True))
     if hardness is not None:
         hardness = check_hardness(hardness, scale_dependent=True)
         z = _check_zeta(zeta, surface)
@@ -522,7 +564,8 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         if theory == "persson01":
             res = _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol)
         else:
-            res = _flag_unconfirmed_separation(res, theory)
+            res = _flag_unconfirmed_separation(
+                res, f"pull_off follows the original theory, not theory={theory!r}")
         return replace(res, separation_source=ADHESION_REFUSED.format(
             where="solve_contact", dg=float(dg)))
     p = _check_pressure(pressure, allow_negative=False)

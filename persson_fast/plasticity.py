@@ -47,12 +47,6 @@ import numpy as np
 from ._validation import as_float_array, check_finite
 from .analytic import plastic_area
 
-#: what the entry points say when asked for what this version cannot serve
-NOT_AVAILABLE = (
-    "a yield wall together with adhesion is not available in this version (the adhesive fixed "
-    "point of seed Eqs. 8-9 is not coupled to the yield wall); without adhesion a constant or "
-    "scale-dependent hardness is served (methods 'analytic', 'strip', 'auto')")
-
 #: the methods that can carry a yield wall (the others raise a ValueError naming these):
 #: "analytic" a constant one without a detachment wall, "strip" any pair of walls
 YIELD_METHODS = ("analytic", "strip", "auto")
@@ -313,5 +307,5 @@ def hardness_limit(pressure, hardness: float) -> np.ndarray:
 
 __all__ = ["check_hardness", "constant_yield", "hardness_limit", "hardness_power_law",
            "hardness_nix_gao", "hardness_table", "hardness_in_diffusion_time",
-           "PowerLawHardness", "NixGaoHardness", "HardnessTable", "NOT_AVAILABLE",
+           "PowerLawHardness", "NixGaoHardness", "HardnessTable",
            "YIELD_METHODS"]

@@ -205,6 +205,8 @@ class ContactResult:
         and the yielded (plastically deformed) fractions of A0 at zeta1; ``area`` is their
         sum, the real contact area (both parts are in contact). None without one. [-]
     plastic_area_zeta : (n_p, n_z) -- A_pl(zeta)/A0 (with a yield wall). [-]
+    plastic_load : (n_p,) or None -- with a yield wall and adhesion: int sigma_Y dA_pl, the
+        load the yielded area carries (load + plastic_load - detached_load = pressure). [Pa]
     hardness : float, callable or None -- the yield stress sigma_Y of the solve: a constant
         [Pa] or a scale-dependent one (a callable of zeta, a ``HardnessTable``).
     load : with a yield wall, the load of the elastic part, int sigma P dsigma
@@ -242,6 +244,7 @@ class ContactResult:
     plastic_area: np.ndarray | None = None
     plastic_area_zeta: np.ndarray | None = None
     hardness: float | None = None
+    plastic_load: np.ndarray | None = None
     #: a callable pressure -> (separation, stiffness, elastic_energy, seconds) for a scene
     #: whose separation is served (see :func:`persson_fast.separation.contact_fields`), or
     #: the reason (a str) why it is not; set by solve_contact

@@ -75,7 +75,7 @@ from .api import solve_contact
 from .scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, default_zeta, unpack_scene
 from .theories import THEORIES, check_theory, check_theory_scene
 from .methods import METHODS
-from .plasticity import NOT_AVAILABLE, check_hardness
+from .plasticity import check_hardness
 from .surfaces import Surface
 
 __all__ = ["scan", "solve_chunk", "ScanWarning", "SCENE_ERROR", "SOLVE_PARAMETERS",
@@ -891,9 +891,9 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
 
     theory : str or sequence of str
         The area theory of the solves (as in :func:`~persson_fast.solve_contact`:
-        "persson01", the default, or a corrected one: "yp08" and "wm17" for scenes without
-        hardness, "xu24" for scenes without adhesion or hardness; ``pull_off`` with
-        adhesion needs "persson01"). A string is held fixed and recorded in ``attrs``. A
+        "persson01", the default, or a corrected one: "yp08" and "wm17" for every scene,
+        "xu24" for scenes without adhesion or hardness; ``pull_off`` with adhesion needs
+        "persson01"). A string is held fixed and recorded in ``attrs``. A
         sequence of distinct theories is an axis ``theory`` of the result, after the axes of
         ``params``; each of its entries gives bitwise the numbers of a scan with that theory
         held fixed, and ``attrs["theory"]`` and ``attrs["theory_gamma"]`` are then "". [-]
@@ -1017,27 +1017,19 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         raise ValueError(f"method 'analytic' has no closed form with adhesion; the scene "
                          f"{grid.labels[i]} has work_of_adhesion > 0; use method='auto' or 'cn'")
     corrected = [kw.get("theory", "persson01") != "persson01" for _, _, kw in grid.scenes]
+    yielding = [kw.get("hardness") is not None for _, _, kw in grid.scenes]
     for k in range(len(corrected)):
-        if corrected[k] and adhesive[k]:
-            check_theory_scene(grid.scenes[k][2]["theory"], grid.scenes[k][2]["work_of_adhesion"])
-            if pull_off:
+        if corrected[k] and (adhesive[k] or yielding[k]):
+            kw = grid.scenes[k][2]
+            check_theory_scene(kw["theory"], kw["work_of_adhesion"], kw.get("hardness"))
+            if pull_off and adhesive[k]:
                 raise ValueError(
                     f"pull_off=True follows the original theory's contact branch only: the "
                     f"scene {grid.labels[k]} has work_of_adhesion > 0 and theory = "
                     f"{grid.scenes[k][2]['theory']!r}; scan the pull-off with "
                     f"theory='persson01'")
-    yielding = [kw.get("hardness") is not None for _, _, kw in grid.scenes]
     if any(yielding):
         i = yielding.index(True)
-        j = next((k for k in range(len(adhesive)) if adhesive[k] and yielding[k]), None)
-        if j is not None:
-            raise ValueError(f"the scene {grid.labels[j]} has hardness and work_of_adhesion "
-                             f"> 0: {NOT_AVAILABLE}")
-        j = next((k for k, c in enumerate(corrected) if c and yielding[k]), None)
-        if j is not None:
-            raise ValueError(f"hardness applies to the original theory; the scene "
-                             f"{grid.labels[j]} has hardness and theory = "
-                             f"{grid.scenes[j][2]['theory']!r}")
         if separation:
             raise ValueError(f"separation=True needs elastic scenes: the scene "
                              f"{grid.labels[i]} has hardness (the separation is not derived "

@@ -205,15 +205,12 @@ class Scene:
     hardness: object = None
 
     def __post_init__(self):
-        from .plasticity import NOT_AVAILABLE, check_hardness
+        from .plasticity import check_hardness
 
         object.__setattr__(self, "hardness", check_hardness(self.hardness,
                                                            scale_dependent=True))
         e, dg, beta = _check_scene_args(self.surface, self.e_star, self.work_of_adhesion,
                                         self.detachment_prefactor, self.energy_correction)
-        if self.hardness is not None and dg > 0:
-            raise ValueError(f"hardness with work_of_adhesion > 0: {NOT_AVAILABLE}; got "
-                             f"hardness = {self.hardness!r} and work_of_adhesion = {dg!r}")
         object.__setattr__(self, "e_star", e)
         object.__setattr__(self, "work_of_adhesion", dg)
         object.__setattr__(self, "detachment_prefactor", beta)

@@ -60,8 +60,10 @@ longer a function of p/(2 sqrt(G)), so T is solved together with sigma_a: the ad
 point (:func:`persson_fast._kernels.adhesion.solve_adhesive_one`) iterates the pair
 (sigma_a, T) at the zeta grid's nodes, T by the trapezoid rule on the grid (second order, as
 the elastic energy U_el, so the zeta ladder's extrapolation and error control apply
-unchanged). Eqs. 8-9 keep their form with the corrected A(zeta). xu24 has no diffusion and
-serves no wall; no corrected theory serves the yield wall yet.
+unchanged). Eqs. 8-9 keep their form with the corrected A(zeta). The yield wall is served
+the same way (the same fixed point with the two-wall solver inside; without adhesion it
+iterates T alone), S taken of the real contact area A_el + A_pl. xu24 has no diffusion and
+serves no wall.
 
 Valid gamma: S(0) = gamma is the factor of the spread at vanishing contact; gamma <= 0 stops
 it (V would stop growing or shrink, and A would not be defined), so gamma > 0; for wm17 the
@@ -93,8 +95,9 @@ CORRECTED_THEORIES = ("yp08", "wm17", "xu24")
 #: theories that can serve a scene with adhesion (the detachment wall): the original and the
 #: corrected diffusions (xu24 is an algebraic relation at full magnification, no diffusion)
 ADHESIVE_THEORIES = ("persson01", "yp08", "wm17")
-#: theories that can serve a scene with a yield wall
-YIELD_THEORIES = ("persson01",)
+#: theories that can serve a scene with a yield wall (the corrected diffusions: T iterated
+#: with the two-wall solver, with or without adhesion)
+YIELD_THEORIES = ("persson01", "yp08", "wm17")
 #: the published default gamma of each corrected theory [-]
 DEFAULT_GAMMA = {"yp08": 0.42, "wm17": 5.0 / 9.0, "xu24": 0.42}
 #: below this gamma the wm17 factor gamma - (2/9) A^2 + (11/9 - gamma) A^4 turns negative
@@ -169,12 +172,8 @@ def check_theory_scene(theory: str, work_of_adhesion: float, hardness=None) -> N
     if theory in serving:
         return
     serve = ", ".join(repr(t) for t in THEORIES if t in serving)
-    if theory == "xu24":
-        why = ("is defined only at full magnification without walls (an algebraic relation "
-               "at zeta1, no diffusion that could carry a wall)")
-    else:
-        why = (f"does not serve the yield wall yet (served by "
-               f"{', '.join(repr(t) for t in YIELD_THEORIES)})")
+    why = ("is defined only at full magnification without walls (an algebraic relation at "
+           "zeta1, no diffusion that could carry a wall)")
     raise ValueError(f"theory={theory!r} {why} [-]; got {'; '.join(walls)}. For this scene use "
                      f"theory={serve}")
 

@@ -19,7 +19,7 @@ from ._kernels.status import GRID_CAP
 from ._kernels.strip import N_DAMP as STRIP_N_DAMP
 from ._validation import as_float_array, check_finite, check_level, check_n_damp, wall_rows
 from .analytic import images_area
-from .plasticity import (NOT_AVAILABLE, check_below_hardness, check_hardness,
+from .plasticity import (check_below_hardness, check_hardness,
                          check_yield_method, constant_yield, hardness_in_diffusion_time)
 from .results import ContactResult, DiffusionResult, per_contact_area, summarize_status
 from .walls import WALL_BUDGET, _call, check_wall_callable, sample_wall
@@ -237,9 +237,6 @@ def solve_yield_contact(surface, pressure, z, G, *, e, dg, method, theory, hardn
                         parallel, check_pressure) -> ContactResult:
     """``solve_contact`` with a yield wall (no adhesion); ``z`` the checked zeta grid and
     ``G`` = G(zeta) with G[0] = 0."""
-    if dg > 0:
-        raise ValueError(f"hardness with work_of_adhesion > 0: {NOT_AVAILABLE}; got hardness "
-                         f"= {hardness!r} and work_of_adhesion = {dg!r}")
     if theory != "persson01":
         raise ValueError(f"hardness applies to the original theory (theory='persson01'); the "
                          f"corrected theories have no yield wall; got theory = {theory!r}")
@@ -263,12 +260,22 @@ def solve_yield_contact(surface, pressure, z, G, *, e, dg, method, theory, hardn
                                  f"shape; got {h1!r} at zeta = [1, {float(z[-1])!r}]")
             wall, kinks = hardness_in_diffusion_time(hardness, surface, e, float(z[-1]))
             report = None
-        res = _strip(G, p, 0.0, wall, method=method, kinks=kinks, level=None, rtol=rtol,
-                     n_damp=None, parallel=parallel, check_pressure=check_pressure,
-                     sigma_y_report=report)
-        out = {"elastic_area": res.area, "plastic_area": res.plastic_area,
-               "detached_area": res.detached_area, "load": res.load}
-        err, status, used = res.error_estimate[:, -1], res.status, res.method
+        # p_nom = 0 starts on the detachment wall (sigma_a = 0): no contact at any zeta,
+        # exactly; the two-wall solver takes the pressures inside the strip
+        pos = np.flatnonzero(p > 0)
+        out = {"elastic_area": np.zeros((p.size, G.size)),
+               "plastic_area": np.zeros((p.size, G.size)),
+               "detached_area": np.ones((p.size, G.size)), "load": np.zeros((p.size, G.size))}
+        err, status = np.zeros(p.size), np.zeros(p.size, dtype=np.int64)
+        used = "strip" if method == "strip" else "analytic"
+        if pos.size:
+            res = _strip(G, p[pos], 0.0, wall, method=method, kinks=kinks, level=None,
+                         rtol=rtol, n_damp=None, parallel=parallel,
+                         check_pressure=check_pressure, sigma_y_report=report)
+            for name, val in (("elastic_area", res.area), ("plastic_area", res.plastic_area),
+                              ("detached_area", res.detached_area), ("load", res.load)):
+                out[name][pos] = val
+            err[pos], status[pos], used = res.error_estimate[:, -1], res.status, res.method
     area_z = out["elastic_area"] + out["plastic_area"]
     area = area_z[:, -1].copy()
     zeros = np.zeros((p.size, z.size))

@@ -73,12 +73,17 @@ def test_sqrt_onset_scene_within_rtol_or_flagged(sa_reference, rtol):
 
 
 def test_estimate_not_far_above_the_error_where_met(sa_reference):
+    """Where the error is measurable against the reference (3x its error bar), the
+    estimate is within 0.5-10x of it (the fixed point's area-settling stop made the middle
+    pressure's error 9e-8, below that bar; the last one's is 2.4e-6)."""
     ref, ref_err = sa_reference
-    r = pf.solve_contact(SA, P_SA[1:2], e_star=E_SA, work_of_adhesion=DG_SA, rtol=1e-4)
-    err = abs(r.area[0] - ref[1])
-    assert r.status[0] == 0
-    assert err > 3 * ref_err[1]           # measurable against the reference
-    assert 0.5 * err <= r.error_estimate[0] <= 10 * err, (r.error_estimate[0], err)
+    r = pf.solve_contact(SA, P_SA, e_star=E_SA, work_of_adhesion=DG_SA, rtol=1e-4)
+    err = np.abs(r.area - ref)
+    assert np.all(r.status == 0)
+    meas = err > 3 * ref_err
+    assert np.any(meas)
+    ratio = r.error_estimate[meas] / err[meas]
+    assert np.all((ratio >= 0.5) & (ratio <= 10)), ratio
 
 
 def test_seed_estimate_calibrated():

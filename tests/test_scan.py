@@ -559,10 +559,10 @@ def test_scan_theory_axis_keeps_the_per_theory_refusals():
     with pytest.raises(ValueError) as axis:
         scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, theory=["persson01", "yp08", "xu24"])
     assert str(axis.value) == str(fixed.value)
-    with pytest.raises(ValueError, match=r"hardness applies to the original theory; .*"
-                                         r"theory='wm17'\) has hardness and theory = 'wm17'"):
+    with pytest.raises(ValueError, match=r"theory='xu24' is defined only at full magnification"
+                                         r".*hardness \(the yield wall\)"):
         scan(pf.SelfAffine, SA_ONE, [1e6], e_star=1e9, hardness=3e8,
-             theory=["persson01", "wm17"])
+             theory=["persson01", "wm17", "xu24"])
     with pytest.raises(ValueError, match=r"params cannot hold 'theory'"):
         scan(pf.SelfAffine, {**SA_ONE, "theory": ["yp08", "wm17"]}, [1e6], e_star=1e9)
     ds = scan(pf.SelfAffine, adhesive, [1e6], e_star=1e9, rtol=1e-3, theory=["persson01"])

@@ -99,8 +99,74 @@ def test_walls_a_theory_cannot_serve():
     with pytest.raises(ValueError, match=r"theory='xu24' is defined only at full magnification"
                                          r".*theory='persson01', 'yp08', 'wm17'"):
         pf.solve_contact(SEED, 1e5, e_star=E, work_of_adhesion=DG, theory="xu24")
-    with pytest.raises(ValueError, match=r"theory='yp08'"):
-        pf.solve_contact(SEED, 1e5, e_star=E, theory="yp08", hardness=3e8)
-    with pytest.raises(ValueError, match=r"theory='persson01'$"):
-        pf.theories.check_theory_scene("wm17", DG, hardness=3e8)
+    with pytest.raises(ValueError, match=r"theory='xu24'.*hardness \(the yield wall\)"):
+        pf.solve_contact(SEED, 1e5, e_star=E, theory="xu24", hardness=3e8)
+    with pytest.raises(ValueError, match=r"theory='persson01', 'yp08', 'wm17'$"):
+        pf.theories.check_theory_scene("xu24", DG, hardness=3e8)
     pf.theories.check_theory_scene("wm17", DG)          # served: no error
+    pf.theories.check_theory_scene("yp08", DG, hardness=3e8)
+
+
+# --- the corrected diffusions with a yield wall -----------------------------------------
+
+SA = pf.SelfAffine(hurst=0.8, q0=1e6, q1=1e9, h_rms=1e-8)
+E_SA = 1e9
+H0 = float(np.sqrt(SA.diffusion_time(np.array([SA.q1]), E_SA)[-1]))     # sqrt(G1) [Pa]
+P_SA = np.array([0.0, 0.01, 0.1, 0.5]) * H0
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6])
+def test_unreachable_yield_wall_is_the_wall_free_corrected_theory(rtol):
+    """sigma_Y = 1000 sqrt(G1): no plastic area, and the corrected diffusion (T iterated
+    alone, no detachment wall) gives the tabulated wall-free yp08 within rtol."""
+    res = pf.solve_contact(SA, P_SA, e_star=E_SA, hardness=1e3 * H0, theory="yp08", rtol=rtol)
+    exact = pf.solve_contact(SA, P_SA, e_star=E_SA, theory="yp08").area
+    assert np.all(res.status == 0), res.message
+    _within(res, exact, rtol)
+    np.testing.assert_array_equal(res.plastic_area, 0.0)
+    assert res.theory == "yp08" and res.method == "strip"
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6])
+def test_yp08_gamma_one_with_yield_is_the_exact_series(rtol):
+    """S = 1: the constant-hardness two-wall series of the original theory."""
+    res = pf.solve_contact(SA, P_SA, e_star=E_SA, hardness=H0, theory="yp08", theory_gamma=1.0,
+                           rtol=rtol)
+    exact = pf.solve_contact(SA, P_SA, e_star=E_SA, hardness=H0)
+    assert exact.method == "analytic" and np.all(res.status == 0)
+    _within(res, exact.area, rtol)
+    np.testing.assert_allclose(res.plastic_area, exact.plastic_area, rtol=rtol, atol=1e-12)
+
+
+@pytest.mark.parametrize("theory", ["yp08", "wm17"])
+def test_scale_dependent_hardness_corrected_converges(theory):
+    h = pf.hardness_power_law(H0, 0.15)
+    ref = pf.solve_contact(SA, P_SA, e_star=E_SA, hardness=h, theory=theory, rtol=1e-8)
+    assert np.all(ref.status == 0), ref.message
+    for rtol in (1e-4, 1e-6):
+        res = pf.solve_contact(SA, P_SA, e_star=E_SA, hardness=h, theory=theory, rtol=rtol)
+        assert np.all(res.status == 0), res.message
+        err = _within(res, ref.area, rtol)
+        assert np.all(res.error_estimate >= 0.5 * err)
+    # the correction raises the elastic area; the hardness limit keeps A_pl <= p / sigma_Y(1)
+    orig = pf.solve_contact(SA, P_SA[1:], e_star=E_SA, hardness=h, rtol=1e-6)
+    assert np.all(ref.elastic_area[1:] > orig.elastic_area)
+    assert np.all(ref.plastic_area <= P_SA / H0 + 1e-12)
+
+
+def test_corrected_with_yield_and_adhesion():
+    """All three: yp08, a yield wall and adhesion, the load balance to the two-wall solver's
+    discretisation error; a vanishing detachment wall gives the no-adhesion answer."""
+    rtol = 1e-5
+    p = P_SA[1:]
+    both = pf.solve_contact(SA, p, e_star=E_SA, work_of_adhesion=0.2, hardness=2 * H0,
+                            theory="yp08", rtol=rtol)
+    assert np.all(both.status == 0), both.message
+    scale = np.max(np.abs([p, both.load, both.plastic_load, both.detached_load]), axis=0)
+    gap = np.abs(both.load + both.plastic_load - both.detached_load - p)
+    assert np.all(gap <= 0.05 * rtol * scale)
+    thin = pf.solve_contact(SA, p, e_star=E_SA, work_of_adhesion=0.2, hardness=2 * H0,
+                            theory="yp08", rtol=rtol, detachment_prefactor=1e-20)
+    dry = pf.solve_contact(SA, p, e_star=E_SA, hardness=2 * H0, theory="yp08", rtol=rtol)
+    assert np.all(np.abs(thin.area - dry.area) <= 2 * rtol * dry.area)
+    assert np.all(both.area > dry.area)

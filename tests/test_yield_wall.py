@@ -83,13 +83,14 @@ def test_solve_contact_with_hardness():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    ({"hardness": 3e8, "work_of_adhesion": 0.06}, "with work_of_adhesion > 0"),
+    ({"hardness": 3e8, "work_of_adhesion": 0.06, "method": "cn"},
+     "method must be 'auto' or 'strip' for a yield wall with adhesion"),
     ({"hardness": [3e8, 1e10]}, "hardness must be a number"),
     ({"hardness": 3e8, "method": "cn"}, r"method 'cn' cannot carry a yield wall"),
     ({"hardness": 3e6}, r"pressure must be <= hardness"),
     ({"hardness": -1.0}, r"hardness must be > 0"),
     ({"hardness": np.nan}, r"hardness must be finite"),
-    ({"hardness": 3e8, "theory": "yp08"}, r"theory='persson01'"),
+    ({"hardness": 3e8, "theory": "xu24"}, r"theory='persson01', 'yp08', 'wm17'"),
 ])
 def test_solve_contact_refusals(kwargs, match):
     with pytest.raises(ValueError, match=match):
@@ -104,8 +105,10 @@ def test_other_refusals():
                           ({"sigma_y": 3e8, "level": 2, "method": "analytic"}, "level")):
         with pytest.raises(ValueError, match=match):
             pf.solve_diffusion(G, [1e6], **kwargs)
-    with pytest.raises(ValueError, match="with work_of_adhesion > 0"):
-        pf.Scene(SEED, e_star=E_SEED, work_of_adhesion=0.06, hardness=3e8)
+    both = pf.Scene(SEED, e_star=E_SEED, work_of_adhesion=0.06, hardness=3e8)
+    assert both.hardness == 3e8 and both.work_of_adhesion == 0.06    # served (issue 14)
+    with pytest.raises(ValueError, match="pull_off does not take a yield wall"):
+        pf.pull_off(both)
     scene = pf.Scene(SEED, e_star=E_SEED, hardness=3e8)
     with pytest.raises(ValueError, match="pull_off does not take a yield wall"):
         pf.pull_off(scene)
@@ -137,8 +140,21 @@ def test_scan_with_hardness_axis():
     assert "plastic_area" not in plain
 
 
+def test_scan_hardness_with_adhesion():
+    """A yield wall with adhesion in a scan: each scene equals its solve_contact."""
+    pytest.importorskip("xarray")
+    p = np.array([0.0, 1e7])
+    ds = pf.scan(SEED, {"hardness": [3e8], "work_of_adhesion": [0.0, 0.06]}, p, e_star=E_SEED,
+                 rtol=1e-3)
+    for j, dg in enumerate((0.0, 0.06)):
+        r = pf.solve_contact(SEED, p, e_star=E_SEED, hardness=3e8, work_of_adhesion=dg,
+                             rtol=1e-3)
+        np.testing.assert_array_equal(ds["area"].values[0, j], r.area)
+        np.testing.assert_array_equal(ds["plastic_area"].values[0, j], r.plastic_area)
+    assert np.all(ds["area"].values[0, 1] > ds["area"].values[0, 0])
+
+
 @pytest.mark.parametrize("params, kwargs, match", [
-    ({"hardness": [3e8], "work_of_adhesion": [0.0, 0.06]}, {}, "has hardness and work_of"),
     ({"hardness": [3e8]}, {"method": "cn"}, "cannot carry a yield wall"),
     ({"hardness": [3e8]}, {"separation": True}, "separation=True needs elastic scenes"),
     ({"hardness": [lambda z: 3e8]}, {}, "scale-dependent"),
@@ -164,8 +180,10 @@ def test_cli_hardness(tmp_path, capsys):
     assert float(rows[1]["plastic_area"]) > 0.3
     assert float(rows[1]["area"]) == pytest.approx(
         float(rows[1]["elastic_area"]) + float(rows[1]["plastic_area"]), rel=1e-15)
+    # with adhesion too (issue 14): the adhesive fixed point around the two-wall solver
     assert cli.main(["contact", "--surface", "capillary", "--temperature", "370",
                      "--surface-tension", "0.04", "--q-c", "1.7e9", "--q0", "62831.85",
                      "--q1", "7e9", "--e-star", "3e9", "--pressure", "1e6", "--hardness", "3e8",
-                     "--work-of-adhesion", "0.06"]) == 2
-    assert "work_of_adhesion" in capsys.readouterr().err
+                     "--work-of-adhesion", "0.06", "--rtol", "1e-3", "--csv", str(out)]) == 0
+    rows = list(csv.DictReader(out.open()))
+    assert float(rows[0]["plastic_area"]) > 0 and float(rows[0]["elastic_area"]) > 0

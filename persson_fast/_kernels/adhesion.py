@@ -29,10 +29,22 @@ import numpy as np
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
 from .diffusion import SMOOTH_WALL, solve_variant
+from .strip import N_DAMP as STRIP_N_DAMP
+from .strip import solve_strip
 from .theories import correction_factor
 
 #: iterations without halving the best residual after which the fixed point gives up
 STALL_ITERATIONS = 10
+#: the fixed point stops when, besides the residual of sigma_a, the last iteration changed
+#: the real contact area at zeta1 by at most AREA_SETTLE (rtol A + 1e-12): the residual
+#: is relative to the largest sigma_a (at zeta1), and the area is most sensitive to the small
+#: sigma_a of the first magnifications, so a residual of 0.1 rtol left area errors up to 0.6
+#: rtol (measured, with a yield wall: 1.2 rtol at rtol 1e-6; the zeta ladder cannot see them,
+#: every level stopping alike). At most AREA_EXTRA_ITERATIONS iterations are added for it;
+#: the last change is added to the error estimate either way (yield wall and corrected
+#: diffusions; see ``settle`` in :func:`solve_adhesive_one`)
+AREA_SETTLE = 0.25
+AREA_EXTRA_ITERATIONS = 10
 #: consecutive iterates mapped to 'no adhesion anywhere' (F(x) = 0) after which the contact
 #: branch counts as lost
 LOST_ITERATIONS = 3
@@ -118,6 +130,24 @@ def detachment_update(area, c, wa, wb, gamma_s, u, g, out_x):
 
 
 @njit_serial
+def yield_detachment_update(el, real, c, wa, wb, gamma_s, u, g, out_x):
+    """Eqs. 8-9 with a yield wall: U_el from the elastic area ``el`` (the yielded regions
+    carry sigma_Y; the roughness finer than where they yielded is flattened plastically and
+    stores no elastic energy), gamma_eff per unit real contact area ``real`` = A_el + A_pl
+    with the binding energy of the real contact at zeta1 (yielded contact is atomic contact
+    and binds): A(zeta) gamma_eff = A(zeta1) dgamma - U_el[A_el](zeta)."""
+    n = el.shape[0]
+    elastic_energy_ratio(el, wa, wb, gamma_s, u)
+    a1 = real[n - 1]
+    for i in range(n):
+        if real[i] > 0.0:
+            g[i] = (a1 - u[i]) / real[i]
+        else:
+            g[i] = 0.0
+        out_x[i] = c[i] * math.sqrt(g[i]) if g[i] > 0.0 else 0.0
+
+
+@njit_serial
 def _is_crossing(g, G, i):
     """gamma_eff changes sign across the cell [G_i, G_i+1] (which has positive width)."""
     return (g[i] > 0.0) != (g[i + 1] > 0.0) and G[i + 1] > G[i]
@@ -136,35 +166,17 @@ def _steep_points(x, G, i):
 
 
 @njit_serial
-def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l, err, counts):
-    """The diffusion solve of one fixed-point iterate: the wall -x, linear in G between the
-    nodes, except near a sign change of gamma_eff (``g``, of the last update).
-
-    There sigma_a = c sqrt(max(g, 0)) starts (or ends) as a square root of the distance to
-    the crossing G*, a kink with an infinite slope. A wall linear between the nodes
-    misplaces it by a fraction of the cell, and its chords miss the square root's curvature
-    in the cells after it: the zeta-grid error then depends on where the crossing falls
-    between the nodes and converges erratically (issue 12). So, in a row with a crossing:
-
-    - in the crossing cell (G* from g linear in G) the wall is sampled at G* and at
-      CROSSING_POINTS - 1 points graded as (k/m)^2 away from it, as
-      x_far sqrt(|G - G*| / |G_far - G*|) plus the node value on the zero side faded out
-      linearly (zero at the fixed point);
-    - in a cell whose node values differ by more than the factor SQRT_CELL_RATIO, sigma_a^2
-      (= c^2 g, smooth) is taken linear in G and the wall sampled at points equally spaced
-      in sigma_a, ceil((1 - min/max) SQRT_CELL_DENSITY) - 1 of them.
-
-    Outputs at the nodes; in a row without a crossing this is ``solve_variant`` (with
-    ``SMOOTH_WALL``) on the nodes alone.
-    """
+def _augmented_wall(G, x, g):
+    """The wall samples of :func:`wall_solve`: (Ga, xa, node, na), the schedule with the
+    samples inserted near a sign change of gamma_eff (``g``), the node indices in it and its
+    length; na = 0 (and empty arrays) in a row without a crossing."""
     n = G.shape[0]
     n_cross = 0
     for i in range(n - 1):
         if _is_crossing(g, G, i):
             n_cross += 1
     if n_cross == 0:
-        return solve_variant(variant | SMOOTH_WALL, G, x, sigma0, rtol, np.int64(-1), n_damp,
-                             area, load, det_a, det_l, err, counts)
+        return np.empty(0), np.empty(0), np.empty(0, dtype=np.int64), 0
     m = CROSSING_POINTS
     cap = n + n_cross * m
     for i in range(n - 1):
@@ -219,6 +231,36 @@ def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l,
             Ga[j] = gk
             j += 1
     na = j
+    return Ga, xa, node, na
+
+
+@njit_serial
+def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l, err, counts):
+    """The diffusion solve of one fixed-point iterate: the wall -x, linear in G between the
+    nodes, except near a sign change of gamma_eff (``g``, of the last update).
+
+    There sigma_a = c sqrt(max(g, 0)) starts (or ends) as a square root of the distance to
+    the crossing G*, a kink with an infinite slope. A wall linear between the nodes
+    misplaces it by a fraction of the cell, and its chords miss the square root's curvature
+    in the cells after it: the zeta-grid error then depends on where the crossing falls
+    between the nodes and converges erratically (issue 12). So, in a row with a crossing:
+
+    - in the crossing cell (G* from g linear in G) the wall is sampled at G* and at
+      CROSSING_POINTS - 1 points graded as (k/m)^2 away from it, as
+      x_far sqrt(|G - G*| / |G_far - G*|) plus the node value on the zero side faded out
+      linearly (zero at the fixed point);
+    - in a cell whose node values differ by more than the factor SQRT_CELL_RATIO, sigma_a^2
+      (= c^2 g, smooth) is taken linear in G and the wall sampled at points equally spaced
+      in sigma_a, ceil((1 - min/max) SQRT_CELL_DENSITY) - 1 of them.
+
+    Outputs at the nodes; in a row without a crossing this is ``solve_variant`` (with
+    ``SMOOTH_WALL``) on the nodes alone.
+    """
+    Ga, xa, node, na = _augmented_wall(G, x, g)
+    if na == 0:
+        return solve_variant(variant | SMOOTH_WALL, G, x, sigma0, rtol, np.int64(-1), n_damp,
+                             area, load, det_a, det_l, err, counts)
+    n = G.shape[0]
     aa = np.empty(na)
     la = np.empty(na)
     da = np.empty(na)
@@ -232,6 +274,61 @@ def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l,
         det_a[i] = da[node[i]]
         det_l[i] = dl[node[i]]
         err[i] = ea[node[i]]
+    return kstat
+
+
+@njit_serial
+def wall_solve_two(G, x, g, sy, sigma0, rtol, onset, el, load, pl, pl_load, det_a, det_l, err,
+                   counts):
+    """:func:`wall_solve` with the yield wall sy (> sigma0 at G[0], linear in G between the
+    nodes) beside the detachment wall -x, by the two-wall solver
+    (:func:`persson_fast._kernels.strip.solve_strip`): outputs at the nodes, the elastic and
+    plastic areas and loads, the detached area and load, the error estimate of the real
+    area. The detachment wall is shaped near a sign change of gamma_eff as in
+    :func:`wall_solve` (``onset``); sy is interpolated linearly in G at the inserted samples.
+    A start at or past the detachment wall (sigma0 <= -x[0]) is separated from the start, one
+    at the yield wall (sigma0 >= sy[0]) yielded from the start."""
+    n = G.shape[0]
+    if sigma0 >= sy[0]:                  # p_nom at the hardness: all yields at the start
+        for i in range(n):
+            el[i] = 0.0
+            load[i] = 0.0
+            pl[i] = 1.0
+            pl_load[i] = sigma0
+            det_a[i] = 0.0
+            det_l[i] = 0.0
+            err[i] = 0.0
+        return st.OK
+    if sigma0 + x[0] <= 0.0:
+        for i in range(n):
+            el[i] = 0.0
+            load[i] = 0.0
+            pl[i] = 0.0
+            pl_load[i] = 0.0
+            det_a[i] = 1.0
+            det_l[i] = -sigma0
+            err[i] = 0.0
+        return st.OK
+    if onset:
+        Ga, xa, node, na = _augmented_wall(G, x, g)
+    else:
+        Ga, xa, node, na = np.empty(0), np.empty(0), np.empty(0, dtype=np.int64), 0
+    if na == 0:
+        return solve_strip(G, x, sy, sigma0, rtol, np.int64(-1), STRIP_N_DAMP, el, load, pl,
+                           pl_load, det_a, det_l, err, counts)
+    sya = np.interp(Ga[:na], G, sy)
+    out = np.empty((7, na))
+    kstat = solve_strip(Ga[:na], xa[:na], sya, sigma0, rtol, np.int64(-1), STRIP_N_DAMP,
+                        out[0], out[1], out[2], out[3], out[4], out[5], out[6], counts)
+    for i in range(n):
+        k = node[i]
+        el[i] = out[0, k]
+        load[i] = out[1, k]
+        pl[i] = out[2, k]
+        pl_load[i] = out[3, k]
+        det_a[i] = out[4, k]
+        det_l[i] = out[5, k]
+        err[i] = out[6, k]
     return kstat
 
 
@@ -269,9 +366,23 @@ def _residual_norm(f, x, sigma0, lo, hi):
 
 
 @njit_serial
+def _keep(snap, x, area, real, pl, pl_load, g, u, load, det_a, det_l, err, change, restore):
+    """Copy the state of an iterate into ``snap`` (12 rows), or back (``restore``)."""
+    rows = (x, area, real, pl, pl_load, g, u, load, det_a, det_l, err, change)
+    for r in range(12):
+        a = rows[r]
+        for i in range(snap.shape[1]):
+            if restore:
+                a[i] = snap[r, i]
+            else:
+                snap[r, i] = a[i]
+
+
+@njit_serial
 def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter, m_hist,
                        omega, x_init, out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
-                       out_det_load, out_error, onset=True, theory=0, theory_gamma=1.0):
+                       out_det_load, out_error, onset=True, theory=0, theory_gamma=1.0,
+                       sy=None, out_pl=None, out_pl_load=None):
     """Self-consistent contact of one nominal pressure (scaled units).
 
     Parameters
@@ -295,6 +406,14 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     onset : bool -- shape the square-root onset of sigma_a where gamma_eff changes sign
         (:func:`wall_solve`; default); False: the wall linear between the nodes everywhere
         (the discretisation the pull-off branch follower uses).
+    sy, out_pl, out_pl_load : None (default: no yield wall), or (n_z,) -- the yield wall
+        sigma_Y at the nodes (scaled, > sigma0 at zeta = 1; sy[0] = inf: a wall the
+        distribution cannot reach, solved without it), and the plastic area and load
+        (outputs). With it every diffusion solve is the two-wall solver
+        (:func:`wall_solve_two`); Eqs. 8-9 as :func:`yield_detachment_update` (U_el from
+        A_el, gamma_eff per unit real area A_el + A_pl), ``out_area`` is the real area, ``out_load`` the
+        elastic load and ``out_error`` the estimate of A_el + A_pl; the corrected time
+        (``theory``) takes S of the real area.
     theory, theory_gamma : int, float -- 0 (default): the original theory; YP08 or WM17 of
         :mod:`persson_fast._kernels.theories`: the corrected diffusion dT/dG = S(A(G))
         (:func:`corrected_times`), solved jointly with sigma_a: the Anderson iterate is
@@ -323,6 +442,24 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     if corrected:
         T = np.empty(n)
     area = np.empty(n)
+    real = area                          # the real contact area A_el + A_pl
+    prev = np.full(n, np.nan)            # ... of the previous iteration
+    change = np.zeros(n)                 # |real - prev| of the last iteration
+    # the area-settling stop (AREA_SETTLE) where it was measured to be needed: with a yield
+    # wall (the two-wall solver's inner error is far below rtol, so the fixed point's stop
+    # dominates) and for the corrected diffusions (T iterated too); for the original theory
+    # with one wall the inner error estimate covers the stop (measured 0.2-0.6 rtol error
+    # against 0.2-0.95 rtol estimate on a scene with a sign change of gamma_eff)
+    settle = corrected or sy is not None
+    snap = np.empty((12, n))             # the first state converged in residual
+    have_snap = False
+    snap_kstat = 0
+    snap_residual = 0.0
+    extra = 0
+    pl = np.zeros(n)
+    pl_load = np.zeros(n)
+    if sy is not None:
+        real = np.empty(n)
     load = np.empty(n)
     det_a = np.empty(n)
     det_l = np.empty(n)
@@ -365,7 +502,21 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         if corrected:
             for i in range(n):
                 T[i] = x[n + i] * G[n - 1]
-        if onset:
+        if sy is not None:
+            if math.isinf(sy[0]):        # a yield wall the distribution cannot reach
+                if onset:
+                    kstat = wall_solve(variant, T, x[:n], g, sigma0, rtol_it, n_damp, area,
+                                       load, det_a, det_l, err, counts)
+                else:
+                    kstat = solve_variant(variant | SMOOTH_WALL, T, x[:n], sigma0, rtol_it,
+                                          np.int64(-1), n_damp, area, load, det_a, det_l,
+                                          err, counts)
+            else:
+                kstat = wall_solve_two(T, x[:n], g, sy, sigma0, rtol_it, onset, area, load,
+                                       pl, pl_load, det_a, det_l, err, counts)
+            for i in range(n):
+                real[i] = area[i] + pl[i]
+        elif onset:
             kstat = wall_solve(variant, T, x[:n], g, sigma0, rtol_it, n_damp, area, load,
                                det_a, det_l, err, counts)
         else:
@@ -376,9 +527,12 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             break
         # other flags (resolution cap, far leak, jump) of an intermediate iterate are not
         # fatal: the status of the final solve is what the result reports
-        detachment_update(area, c, wa, wb, gamma_s, u, g, fx)
+        if sy is not None:
+            yield_detachment_update(area, real, c, wa, wb, gamma_s, u, g, fx)
+        else:
+            detachment_update(area, c, wa, wb, gamma_s, u, g, fx)
         if corrected:
-            corrected_times(G, area, theory, theory_gamma, fx[n:])
+            corrected_times(G, real, theory, theory_gamma, fx[n:])
         for i in range(m):
             f[i] = fx[i] - x[i]
         residual = _residual_norm(f, x, sigma0, 0, n)
@@ -405,12 +559,30 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         lost = lost + 1 if ((fx[0] == 0.0 or beyond) and x[0] > 0.0 and sigma0 < 0.0) else 0
         if lost >= LOST_ITERATIONS:
             break
+        settled = True
+        if settle:
+            for i in range(n):
+                change[i] = abs(real[i] - prev[i])
+                prev[i] = real[i]
+            settled = change[n - 1] <= AREA_SETTLE * (rtol * real[n - 1] + 1e-12)
         if residual <= tol:
             if rtol_it == rtol:
-                converged = True
-                break
-            final_pass = True     # converged on a loose inner solve: confirm at rtol
-        if area[n - 1] <= 0.0 and sigma0 + x[0] <= 0.0 and fx[0] <= x[0]:
+                if settled or extra >= AREA_EXTRA_ITERATIONS:
+                    converged = True
+                    break
+                # the area still moves: iterate on, keeping this state to fall back to
+                # should the further iterations leave the branch (near the pull-off stress
+                # the fixed point at fixed p_nom is nearly singular)
+                if not have_snap:
+                    _keep(snap, x, area, real, pl, pl_load, g, u, load, det_a, det_l, err,
+                          change, False)
+                    have_snap = True
+                    snap_kstat = kstat
+                    snap_residual = residual
+                extra += 1
+            else:
+                final_pass = True     # converged on a loose inner solve: confirm at rtol
+        if real[n - 1] <= 0.0 and sigma0 + x[0] <= 0.0 and fx[0] <= x[0]:
             # separated and the wall keeps closing: no contact is the fixed point
             for i in range(m):
                 x[i] = fx[i]
@@ -474,12 +646,20 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
             for i in range(n + 1, m):
                 if x[i] < x[i - 1]:
                     x[i] = x[i - 1]
+    if not converged and status == st.OK and have_snap:
+        _keep(snap, x, area, real, pl, pl_load, g, u, load, det_a, det_l, err, change, True)
+        converged = True
+        kstat = snap_kstat
+        residual = snap_residual
     if (not converged and status == st.OK and sigma0 < 0.0
-            and (lost >= LOST_ITERATIONS or area[n - 1] <= rtol)):
+            and (lost >= LOST_ITERATIONS or real[n - 1] <= rtol)):
         # nominal tension and the iteration has left the contact branch: the surfaces
         # separate (A = 0), which is the fixed point reached
         for i in range(n):
             area[i] = 0.0
+            real[i] = 0.0
+            pl[i] = 0.0
+            pl_load[i] = 0.0
             x[i] = 0.0
             g[i] = 0.0
             u[i] = 0.0
@@ -492,10 +672,14 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         kstat = st.OK
     if not converged and status == st.OK:
         status = st.NOT_CONVERGED
+    if settle and residual > 0.0:        # not the separated state: charge the last change
+        for i in range(n):
+            if math.isfinite(change[i]):
+                err[i] += change[i]
     if status == st.OK and kstat != st.OK:
         status = kstat
     for i in range(n):
-        out_area[i] = area[i]
+        out_area[i] = real[i]
         out_sigma_a[i] = x[i]
         out_g[i] = g[i]
         out_u[i] = u[i]
@@ -503,19 +687,31 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         out_det_area[i] = det_a[i]
         out_det_load[i] = det_l[i]
         out_error[i] = err[i]
+    if sy is not None:
+        for i in range(n):
+            out_pl[i] = pl[i]
+            out_pl_load[i] = pl_load[i]
     return status, it, residual
 
 
 def _adhesive_sweep(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
                     omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error, status,
-                    iterations, residual, onset, theory, theory_gamma):
-    """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,)."""
+                    iterations, residual, onset, theory, theory_gamma, sy, pl, pl_load):
+    """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,); sy
+    None (no yield wall) or (n_p, n_z) with outputs pl, pl_load (n_p, n_z)."""
     for k in prange(pressures.shape[0]):
-        s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
-                                        n_damp, max_iter, m_hist, omega, x_init[k], area[k],
-                                        sigma_a[k], g[k], u[k], load[k], det_area[k],
-                                        det_load[k], error[k], onset, theory,
-                                        theory_gamma)
+        if sy is None:
+            s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
+                                            n_damp, max_iter, m_hist, omega, x_init[k], area[k],
+                                            sigma_a[k], g[k], u[k], load[k], det_area[k],
+                                            det_load[k], error[k], onset, theory,
+                                            theory_gamma, None, None, None)
+        else:
+            s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
+                                            n_damp, max_iter, m_hist, omega, x_init[k], area[k],
+                                            sigma_a[k], g[k], u[k], load[k], det_area[k],
+                                            det_load[k], error[k], onset, theory,
+                                            theory_gamma, sy[k], pl[k], pl_load[k])
         status[k] = s
         iterations[k] = it
         residual[k] = res

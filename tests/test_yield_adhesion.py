@@ -1,0 +1,107 @@
+"""A yield wall with adhesion (issue 14): the adhesive fixed point with the two-wall solver
+inside, Eqs. 8-9 on the elastic contact area."""
+import numpy as np
+import pytest
+
+import persson_fast as pf
+from persson_fast._kernels.status import LOST_CONTACT
+
+E = 1e9
+#: a self-affine scene where the contact stress reaches sigma_Y ~ sqrt(G1) (H = 0.8, three
+#: decades, h_rms = 10 nm): yielding and adhesion both matter
+SURF = pf.SelfAffine(hurst=0.8, q0=1e6, q1=1e9, h_rms=1e-8)
+H0 = float(np.sqrt(SURF.diffusion_time(np.array([SURF.q1]), E)[-1]))     # sqrt(G1) [Pa]
+P = np.array([-0.05, 0.0, 0.01, 0.1]) * H0
+
+
+def _contract(res, exact, rtol):
+    err = np.abs(res.area - exact)
+    ok = (err <= rtol * exact + 1e-12) | (res.status != 0)
+    assert np.all(ok), (rtol, err / (rtol * exact), res.status)
+    return err
+
+
+@pytest.mark.parametrize("factor", [1.0, 3.0])
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6])
+def test_vanishing_detachment_wall_is_the_exact_yield_series(factor, rtol):
+    """Detachment prefactor 1e-20 (a wall of ~1e-11 Pa): the constant yield wall without
+    adhesion, whose exact answer is the two-wall image series (an independent path)."""
+    p = np.array([0.01, 0.1, 0.5]) * H0
+    res = pf.solve_contact(SURF, p, e_star=E, work_of_adhesion=0.2, detachment_prefactor=1e-20,
+                           hardness=factor * H0, rtol=rtol)
+    exact = pf.solve_contact(SURF, p, e_star=E, hardness=factor * H0)
+    assert exact.method == "analytic"
+    assert np.all(res.status == 0), res.message
+    _contract(res, exact.area, rtol)
+    np.testing.assert_allclose(res.plastic_area, exact.plastic_area, rtol=2 * rtol, atol=1e-12)
+    assert res.method == "strip"
+
+
+def test_far_yield_wall_is_the_adhesive_contact():
+    """sigma_Y far above every stress the distribution reaches: the adhesive answer, no
+    plastic area."""
+    rtol = 1e-6
+    res = pf.solve_contact(SURF, P, e_star=E, work_of_adhesion=0.2, hardness=1e3 * H0,
+                           rtol=rtol)
+    ref = pf.solve_contact(SURF, P, e_star=E, work_of_adhesion=0.2, rtol=rtol)
+    assert np.all(res.status == 0) and np.all(ref.status == 0)
+    np.testing.assert_array_less(res.plastic_area, 1e-12)
+    assert np.all(np.abs(res.area - ref.area) <= 2 * rtol * ref.area)
+
+
+@pytest.fixture(scope="module")
+def reference():
+    """Scale-dependent hardness sigma_Y = sqrt(G1) zeta^0.15 with Delta gamma = 0.2 J/m^2,
+    tension included, at rtol 1e-8 (the converged reference)."""
+    h = pf.hardness_power_law(H0, 0.15)
+    return h, pf.solve_contact(SURF, P, e_star=E, work_of_adhesion=0.2, hardness=h, rtol=1e-8)
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6])
+def test_scale_dependent_hardness_with_adhesion_converges(rtol, reference):
+    h, ref = reference
+    assert np.all(ref.status == 0), ref.message
+    res = pf.solve_contact(SURF, P, e_star=E, work_of_adhesion=0.2, hardness=h, rtol=rtol)
+    assert np.all(res.status == 0), res.message
+    err = _contract(res, ref.area, rtol)
+    assert np.all(res.error_estimate >= 0.3 * err)
+    # both parts in contact, each in [0, A]; adhesion raises the area, yield caps the stress
+    np.testing.assert_allclose(res.elastic_area + res.plastic_area, res.area, rtol=0, atol=1e-15)
+    assert np.all((res.plastic_area > 0) & (res.plastic_area < res.area))
+    dry = pf.solve_contact(SURF, P[1:], e_star=E, hardness=h, rtol=rtol)
+    assert np.all(res.area[1:] > dry.area + 0.1)
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6])
+def test_load_bookkeeping(reference, rtol):
+    """load (elastic part) + plastic_load - detached_load = p_nom. The two-wall solver books
+    the absorbed loads as the wall fluxes times the walls' stresses, so the balance holds to
+    its discretisation error (measured 2-3e-9 of the scale at rtol 1e-6), not to rounding as
+    the one-wall kernel's does; the areas' own balance A_el + A_pl + D = 1 holds to
+    rounding (each level's to ~1e-14, the Richardson combination of two levels and the
+    fixed point's clipping of the profiles leave up to ~7e-13)."""
+    h, _ = reference
+    res = pf.solve_contact(SURF, P, e_star=E, work_of_adhesion=0.2, hardness=h, rtol=rtol)
+    scale = np.max(np.abs([P, res.load, res.plastic_load, res.detached_load]), axis=0)
+    gap = np.abs(res.load + res.plastic_load - res.detached_load - P)
+    assert np.all(gap <= 0.05 * rtol * scale), gap / scale
+    np.testing.assert_allclose(res.area + res.detached_area, 1.0, rtol=0, atol=1e-11)
+
+
+def test_separated_tension_is_flagged():
+    """No pull-off stress is computed with a yield wall: a separated tension is flagged."""
+    res = pf.solve_contact(SURF, np.array([-0.5 * H0, 0.01 * H0]), e_star=E,
+                           work_of_adhesion=0.2, hardness=H0, rtol=1e-4)
+    assert res.area[0] == 0 and res.status[0] == LOST_CONTACT
+    assert res.status[1] == 0 and "pull_off has no yield wall" in res.message
+
+
+def test_refusals():
+    with pytest.raises(ValueError, match=r"method must be 'auto' or 'strip' for a yield wall "
+                                         r"with adhesion.*'cn'"):
+        pf.solve_contact(SURF, 1e5, e_star=E, work_of_adhesion=0.2, hardness=H0, method="cn")
+    with pytest.raises(ValueError, match=r"pressure must be <= hardness at zeta = 1"):
+        pf.solve_contact(SURF, 2 * H0, e_star=E, work_of_adhesion=0.2, hardness=H0)
+    with pytest.raises(ValueError, match=r"hardness\(zeta\) must return finite values > 0"):
+        pf.solve_contact(SURF, 1e5, e_star=E, work_of_adhesion=0.2,
+                         hardness=lambda z: -np.ones_like(z))
