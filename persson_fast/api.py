@@ -146,8 +146,8 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         convergence studies. [-]
     n_damp : int or None
         Crank-Nicolson steps replaced by implicit-Euler half steps after a wall jump
-        (Rannacher damping), >= 0; for "strip", at the start of each run. None (default): 2,
-        for "strip" 1.
+        (Rannacher damping), >= 0; for "strip", at the start of each run and after each kink
+        of a wall. None (default): 2, for "strip" 1.
     parallel : None, bool, "threads" or "prange"
         Spread pressures over threads, as in :func:`solve_contact` (default: a thread pool
         over the disk-cached serial kernels for >= 4 pressures, bitwise equal to False).

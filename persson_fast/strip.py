@@ -74,7 +74,8 @@ def solve_two_walls(G, pressures, sa_rows, sy_rows, *, rtol, n_damp=1, level=-1,
         Target relative accuracy of the real contact area A = A_el + A_pl:
         |dA| <= rtol A + 1e-12, in [1e-12, 0.1]. [-]
     n_damp : int, optional
-        Steps of each run after the start taken as two implicit-Euler half steps (Rannacher).
+        Steps of each run after the start, and after each kink of a wall (a speed jump of
+        more than 25 %), taken as two implicit-Euler half steps (Rannacher).
         The default 1 keeps the error ladder asymptotic (measured: with 2 the first ladder's
         estimate overstates the error up to ~1e3 times, so it refines needlessly). [-]
     level : int, optional

@@ -3,7 +3,7 @@ hardness (power law, Nix-Gao, table), moving detachment walls, the accuracy cont
 the exact series and the slow twin, and the hardness forms' validation."""
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import persson_fast as pf
@@ -219,6 +219,10 @@ def test_independent_of_the_zeta_samples():
 @settings(max_examples=12, deadline=None)
 @given(ratio=st.floats(0.02, 0.98), drift=st.floats(-3.0, 3.0), curve=st.floats(0.0, 0.8),
        detach=st.floats(0.0, 0.5))
+# the yield wall 0.06 Y above the start, a sqrt wall on 7 samples (kinks) and 99.8 % of the
+# mass absorbed by the end: the density's check must not take Crank-Nicolson's grid-scale
+# modes after the kinks, nor a negative lobe far below rtol, for a failure
+@example(ratio=0.9375, drift=0.0, curve=0.5, detach=0.0)
 def test_bookkeeping_identities_with_moving_walls(ratio, drift, curve, detach):
     """A_el + A_pl + D = 1 to 1e-10, and the load balance load + plastic_load - detached_load
     = p to the tolerance asked, for moving walls with and without a detachment wall."""

@@ -32,7 +32,8 @@ STATUS_MESSAGES = {
     GRID_CAP: "required resolution exceeds the node cap; accuracy not guaranteed",
     BAD_INPUT: "inconsistent kernel input",
     NOT_CONVERGED: "adhesion fixed point did not converge",
-    NEGATIVE_DENSITY: "stress distribution became negative beyond rounding",
+    NEGATIVE_DENSITY: ("stress distribution became markedly negative, with a negative mass "
+                       "above the area's tolerance (ringing)"),
     WALL_JUMP: ("the wall jumped over a flat stretch of G: the error after a jump converges at "
                 "first to second order, not fourth; rtol is not guaranteed (compare a smaller rtol)"),
     LOST_CONTACT: ("separated, although pull_off finds contact down to this tension (or cannot "
