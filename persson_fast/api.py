@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import analytic
-from ._kernels.status import GRID_CAP
+from ._kernels.status import GRID_CAP, LOST_CONTACT
 from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
                           check_nondecreasing, check_nonnegative, wall_rows)
 from .adhesion import (solve_adhesive_contact, warm_adhesion, warm_adhesive_yield,
@@ -341,7 +341,6 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     Python 3.14 and could leave an 'ignore' filter behind for good).
     """
 
-    from ._kernels.status import LOST_CONTACT
     from .pulloff import _pull_off
 
     sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
@@ -358,10 +357,16 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     lost = sep & (res.pressure > -(sigma_c + info["error_estimate"]))
     if not np.any(lost):
         return res
-    status = np.where(lost, LOST_CONTACT, res.status)
+    return _flag_rows(res, lost, f"; pull-off stress {sigma_c:.6g} +- "
+                                 f"{info['error_estimate']:.2g} Pa")
+
+
+def _flag_rows(res, rows, note):
+    """``res`` with status LOST_CONTACT at ``rows`` (a mask) and ``note`` added to its
+    message."""
+    status = np.where(rows, LOST_CONTACT, res.status)
     success, message = summarize_status(status)
-    message += f"; pull-off stress {sigma_c:.6g} +- {info['error_estimate']:.2g} Pa"
-    return replace(res, status=status, success=success, message=message)
+    return replace(res, status=status, success=success, message=message + note)
 
 
 def _flag_unconfirmed_separation(res, why):
@@ -370,15 +375,11 @@ def _flag_unconfirmed_separation(res, why):
     theory's elastic branch), so the end of their contact branch cannot be checked: a
     separated tension gets status LOST_CONTACT (contact not excluded) instead of a silent
     A = 0. ``why`` ends the message."""
-    from ._kernels.status import LOST_CONTACT
-
     sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
     if not np.any(sep):
         return res
-    status = np.where(sep, LOST_CONTACT, res.status)
-    success, message = summarize_status(status)
-    message += f"; separated tensions are not checked against a pull-off stress: {why}"
-    return replace(res, status=status, success=success, message=message)
+    return _flag_rows(res, sep, f"; separated tensions are not checked against a pull-off "
+                                f"stress: {why}")
 
 
 def _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction, beta, method,

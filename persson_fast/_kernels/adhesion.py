@@ -118,15 +118,7 @@ def elastic_energy_ratio(area, wa, wb, gamma_s, out_u):
 @njit_serial
 def detachment_update(area, c, wa, wb, gamma_s, u, g, out_x):
     """One application of Eqs. 8-9: new sigma_a from an area profile. Fills u and g too."""
-    n = area.shape[0]
-    elastic_energy_ratio(area, wa, wb, gamma_s, u)
-    a1 = area[n - 1]
-    for i in range(n):
-        if area[i] > 0.0:
-            g[i] = (a1 - u[i]) / area[i]
-        else:
-            g[i] = 0.0
-        out_x[i] = c[i] * math.sqrt(g[i]) if g[i] > 0.0 else 0.0
+    yield_detachment_update(area, area, c, wa, wb, gamma_s, u, g, out_x)
 
 
 @njit_serial
