@@ -105,3 +105,14 @@ def test_refusals():
     with pytest.raises(ValueError, match=r"hardness\(zeta\) must return finite values > 0"):
         pf.solve_contact(SURF, 1e5, e_star=E, work_of_adhesion=0.2,
                          hardness=lambda z: -np.ones_like(z))
+
+
+def test_threads_bitwise_equal_to_serial(reference):
+    """The per-pressure yield rows are dealt to the threads with their pressures."""
+    h, _ = reference
+    p = np.linspace(-0.05, 0.5, 9) * H0
+    kw = dict(e_star=E, work_of_adhesion=0.2, hardness=h, rtol=1e-4)
+    a = pf.solve_contact(SURF, p, parallel=False, **kw)
+    b = pf.solve_contact(SURF, p, parallel=None, **kw)
+    for name in ("area", "plastic_area", "error_estimate", "status", "sigma_a"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
