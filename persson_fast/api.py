@@ -160,7 +160,7 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
     -----
     dP/dG = d2P/dsigma2 with P(sigma, 0) = delta(sigma - sigma0) and P(-sigma_a, G) = 0
     (seed Eqs. 4, 7 in diffusion time G). The "cn" scheme is described in
-    :mod:`persson_fast._kernels.diffusion`; its order after extrapolation is 4 for smooth
+    :mod:`persson_fast._kernels.similarity`; its order after extrapolation is 4 for smooth
     walls.
 
     A callable wall is sampled on 0, G, ``kinks`` and adaptively inserted points until its

@@ -102,7 +102,7 @@ from ._kernels import status as _status
 from ._kernels.adhesion import solve_adhesive_one
 from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_separation,
                                    law_stiffness)
-from ._kernels.diffusion import solve_one
+from ._kernels.similarity import solve_one
 from ._kernels.strip import N_DAMP as STRIP_N_DAMP
 from ._kernels.strip import solve_strip
 from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
@@ -169,7 +169,7 @@ def diffusion_solve(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load, out_de
 
     ``diffusion_solve(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load,
     out_detached_area, out_detached_load, out_error) -> status``: the "cn" kernel
-    :func:`persson_fast._kernels.diffusion.solve_one` (outputs as in ``solve_grid``). The
+    :func:`persson_fast._kernels.similarity.solve_one` (outputs as in ``solve_grid``). The
     arguments are checked first (module table): on a bad one every output is filled with
     NaN and its code returned.
     """

@@ -4,11 +4,11 @@ serve, and the ``method="auto"`` policy.
 Every entry says:
 
 * ``family`` -- ``"closed-form"``, ``"grid"`` (the front-fixed similarity grid of
-  :mod:`persson_fast._kernels.diffusion`), ``"fixed-grid"`` (a grid attached to the stress
+  :mod:`persson_fast._kernels.similarity`), ``"fixed-grid"`` (a grid attached to the stress
   axis, the wall off-grid) or ``"integral"`` (the Volterra equation, no stress grid);
 * ``sweep`` (compiled methods) -- where its kernels are: (module, base name of the serial
   and ``prange`` sweeps ``<base>_serial`` / ``<base>_parallel``, the name of the grid
-  variant constant in :mod:`persson_fast._kernels.diffusion` or None, whether the sweep
+  variant constant in :mod:`persson_fast._kernels.similarity` or None, whether the sweep
   takes ``n_damp``); :func:`sweep_kernels` reads it, so a new method is its kernel file and
   one entry here;
 * ``controls_error`` (default True) -- False for a method whose kernel does not refine until
@@ -115,7 +115,7 @@ def sweep_kernels(method: str):
 
     Read from the method's ``sweep`` entry (module, kernel base name -- the serial and the
     ``prange`` driver are ``<base>_serial`` and ``<base>_parallel`` --, the name of the grid
-    variant constant in :mod:`persson_fast._kernels.diffusion` or None, and whether the
+    variant constant in :mod:`persson_fast._kernels.similarity` or None, and whether the
     sweep takes ``n_damp``); the kernel module is imported on first use.
     """
     import importlib
@@ -134,9 +134,9 @@ def variant_of(method: str) -> int:
     entry = METHODS[method].get("sweep")
     if entry is None or entry[2] is None:
         raise ValueError(f"method {method!r} is not a variant of the front-fixed grid solver")
-    from ._kernels import diffusion
+    from ._kernels import similarity
 
-    return int(getattr(diffusion, entry[2]))
+    return int(getattr(similarity, entry[2]))
 
 
 def check_method(method: str) -> str:

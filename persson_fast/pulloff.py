@@ -15,7 +15,7 @@ import numpy as np
 from ._kernels.adhesion import detachment_update
 from ._kernels.status import RTOL_NOT_MET, WALL_JUMP
 from .adhesion import _controls, _run, solve_adhesive_contact
-from ._kernels.diffusion import SMOOTH_WALL
+from ._kernels.similarity import SMOOTH_WALL
 from .methods import choose_auto, variant_of
 from .results import summarize_status
 from .scene import DETACHMENT_PREFACTOR

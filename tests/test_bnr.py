@@ -10,7 +10,7 @@ from persson_fast._kernels.bnr import (
     bnr_sweep_serial,
     solve_bnr_one,
 )
-from persson_fast._kernels.diffusion import solve_one
+from persson_fast._kernels.similarity import solve_one
 
 #: absolute floor of the area contract |A - A_exact| <= rtol A + ATOL
 ATOL = 1e-12

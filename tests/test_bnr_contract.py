@@ -12,7 +12,7 @@ import pytest
 import persson_fast as pf
 from persson_fast._kernels import status as st
 from persson_fast._kernels.bnr import solve_bnr_one
-from persson_fast._kernels.diffusion import solve_one
+from persson_fast._kernels.similarity import solve_one
 
 #: absolute floor of the area contract |A - A_ref| <= rtol A + ATOL
 ATOL = 1e-12

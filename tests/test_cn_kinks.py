@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings, strategies as hst
 
 import persson_fast as pf
-from persson_fast._kernels import diffusion as dk
+from persson_fast._kernels import similarity as dk
 
 ATOL = 1e-12
 RTOLS = (1e-6, 1e-7, 1e-8)

@@ -12,7 +12,7 @@ import textwrap
 import numpy as np
 import pytest
 
-from persson_fast._kernels import diffusion as d
+from persson_fast._kernels import similarity as d
 from persson_fast._kernels import status as st
 
 # the saved inputs (/tmp/hang_G.npy, /tmp/hang_x.npy), sigma0 = 0
@@ -50,7 +50,7 @@ def test_tiny_start_distance_fast_subprocess():
     """The public entry point finishes in seconds (it took 240 s), compile included."""
     code = textwrap.dedent(f"""
         import numpy as np
-        from persson_fast._kernels.diffusion import solve_one
+        from persson_fast._kernels.similarity import solve_one
         G = np.array({G_HANG.tolist()}); x = np.array({X_HANG.tolist()})
         outs = [np.zeros(G.shape[0]) for _ in range(5)]
         print(solve_one(G, x, 0.0, 0.1, 2, *outs))

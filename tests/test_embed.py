@@ -7,7 +7,7 @@ import persson_fast as pf
 from persson_fast import embed
 from persson_fast._kernels import status as st
 from persson_fast._kernels.adhesion import solve_adhesive_one
-from persson_fast._kernels.diffusion import solve_one
+from persson_fast._kernels.similarity import solve_one
 
 E_STAR = 2.9e9 / (1 - 0.3**2)
 

@@ -9,7 +9,7 @@ import pytest
 
 import persson_fast as pf
 from persson_fast._kernels import status as st
-from persson_fast._kernels.diffusion import solve_one
+from persson_fast._kernels.similarity import solve_one
 from persson_fast._kernels.fixedgrid import (
     WORK_MAX,
     fixedgrid_sweep_parallel,

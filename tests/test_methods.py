@@ -151,7 +151,7 @@ def test_registry_carries_the_kernels():
     import inspect
 
     from persson_fast import methods, sweep
-    from persson_fast._kernels import diffusion
+    from persson_fast._kernels import similarity
 
     compiled = [m for m, i in pf.METHODS.items() if i.get("family") not in (None, "closed-form")]
     assert set(compiled) == {"cn", "cn-plain", "implicit-euler", "fixed-grid", "bnr", "strip"}
@@ -159,7 +159,7 @@ def test_registry_carries_the_kernels():
         serial, parallel, lead, damped = methods.sweep_kernels(m)
         assert callable(serial) and callable(parallel) and isinstance(damped, bool)
     assert [methods.variant_of(m) for m in ("cn", "cn-plain", "implicit-euler")] == [
-        diffusion.CN, diffusion.CN_PLAIN, diffusion.IMPLICIT_EULER]
+        similarity.CN, similarity.CN_PLAIN, similarity.IMPLICIT_EULER]
     src = inspect.getsource(sweep)
     assert '"family"' not in src and "fixedgrid" not in src and "bnr" not in src
     with pytest.raises(ValueError, match="no compiled sweep"):

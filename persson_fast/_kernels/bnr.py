@@ -96,7 +96,7 @@ wall, where only the free term is evaluated: O(N)). N is fixed per decade of G f
 schedule density, but every kink is graded on both sides and a graded segment needs about
 ten intervals at rtol = 1e-6 whatever its length, so N (and the cost, quadratically) grows
 with the number of schedule points: a few thousand nodes for 30-130 points over five decades.
-The stress-grid solver of :mod:`persson_fast._kernels.diffusion` is much cheaper for such
+The stress-grid solver of :mod:`persson_fast._kernels.similarity` is much cheaper for such
 schedules; this solver is the grid-free cross-check.
 
 Limitation (small areas)
@@ -118,7 +118,7 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
-from .diffusion import fill_state
+from .similarity import fill_state
 
 # --- constants of the scheme (dimensionless, y0 = 1, t = 2 G / y0^2) -----------------------
 ALPHA = 0.3           # weight of the onset term of phi (onset length 2 ALPHA sqrt(L_START))

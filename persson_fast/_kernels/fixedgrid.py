@@ -1,7 +1,7 @@
 """Stress diffusion on a grid fixed in the stress, the wall crossing the nodes (``@njit``).
 
 A second treatment of the moving absorbing boundary, beside the front-fixed scheme of
-:mod:`persson_fast._kernels.diffusion` (which maps the distance to the wall onto a fixed grid,
+:mod:`persson_fast._kernels.similarity` (which maps the distance to the wall onto a fixed grid,
 so that the wall always sits on node 0). Here the grid is attached to the stress itself and the
 wall moves across it.
 
@@ -109,7 +109,7 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
-from .diffusion import boundary_at, fill_state, wall_far_limit
+from .similarity import boundary_at, fill_state, wall_far_limit
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf
 from .tridiag import theta_workspace, thomas
 

@@ -2,13 +2,13 @@
 
 Each iteration writes only its own output row, so the serial and the parallel sweep give
 bitwise-equal results. ``variant`` selects the grid variant of
-:func:`persson_fast._kernels.diffusion.solve_variant`; ``level`` >= 0 an explicit resolution
+:func:`persson_fast._kernels.similarity.solve_variant`; ``level`` >= 0 an explicit resolution
 (else ``rtol`` sets it); ``counts`` (n_p, 3) receives nodes, steps and node-steps.
 """
 from __future__ import annotations
 
 from .._jit import njit_sweeps, prange
-from .diffusion import solve_variant
+from .similarity import solve_variant
 
 
 def _sweep(variant, G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area, det_load,

@@ -1,4 +1,5 @@
-"""The stress diffusion with an absorbing wall, one pressure at a time (``@njit``).
+"""The stress diffusion with an absorbing wall on the front-fixed similarity grid, one
+pressure at a time (``@njit``): methods "cn", "cn-plain" and "implicit-euler".
 
 Problem, in diffusion time G:
     dP/dG = d2P/dsigma2,  P(sigma, 0) = delta(sigma - sigma0),  P(-sigma_a(G), G) = 0,
