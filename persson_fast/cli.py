@@ -12,6 +12,12 @@ contact
 info
     Versions, threads and the time to compile (or load from the cache) the kernels.
 
+The surface models of ``contact`` (``--surface NAME``, ``--topography``, ``--psd``), their flags
+and their ``[surface]`` keys in a TOML file come from the models' own declarations,
+``persson_fast.surfaces.SURFACE_MODELS``: a model registered before the parser is built (a
+``Surface`` subclass with ``MODEL`` and ``PARAMETERS``, in any imported module) is one more
+choice with its own flags.
+
 Running ``persson-fast`` with no subcommand runs ``figure2``. A ValueError raised by the package
 (an invalid input) is printed as ``error: <message>`` and the exit code is 2.
 
@@ -68,7 +74,7 @@ import numpy as np
 
 from .methods import METHODS
 from .surfaces import SEED_POISSON as SEED_POISSON_DEFAULT
-from .surfaces import SEED_WORK_OF_ADHESION, SEED_YOUNG_MODULUS, seed_e_star
+from .surfaces import BAND, SEED_WORK_OF_ADHESION, SEED_YOUNG_MODULUS, SURFACE_MODELS, seed_e_star
 
 __all__ = ["main", "build_parser"]
 
@@ -81,31 +87,8 @@ _COMMANDS = ("figure2", "contact", "info")
 #: equal)
 THEORY_NAMES = ("persson01", "yp08", "wm17", "xu24")
 
-#: surface parameters per model: (TOML key, attribute of the parsed flags, constructor keyword)
-_SURFACE_KEYS = {
-    "capillary": ("temperature", "surface_tension", "q_c", "q0", "q1", "density", "gravity"),
-    "self-affine": ("hurst", "q0", "q1", "q_r", "h_rms", "slope_rms", "C0"),
-    "topography": ("file", "q0", "q1", "hurst", "bins_per_decade", "unit", "physical_sizes"),
-    "psd": ("file", "q_unit", "C_unit", "q0", "q1"),
-}
-#: [surface] keys whose values are text (file names, units), not numbers
-_TEXT_KEYS = ("file", "unit", "q_unit", "C_unit")
-_REQUIRED = {
-    "capillary": ("temperature", "surface_tension", "q_c", "q0", "q1"),
-    "self-affine": ("hurst", "q0", "q1"),
-    "topography": ("file",),
-    "psd": ("file",),
-}
-_FLAG_OF = {
-    "temperature": "--temperature", "surface_tension": "--surface-tension", "q_c": "--q-c",
-    "q0": "--q0", "q1": "--q1", "density": "--density", "gravity": "--gravity",
-    "hurst": "--hurst", "q_r": "--q-r", "h_rms": "--h-rms", "slope_rms": "--slope-rms",
-    "C0": "--c0", "file": "--topography/--psd", "bins_per_decade": "--bins-per-decade",
-    "unit": "--height-unit", "physical_sizes": "--physical-size", "q_unit": "--q-unit",
-    "C_unit": "--c-unit",
-}
-#: attribute of the parsed flags for each [surface] key where it is not the key itself
-_ATTR_OF = {"file": None, "physical_sizes": "physical_size", "unit": "height_unit"}
+#: title of the group of flags every surface model shares (the band, ``surfaces.BAND``)
+_ALL_MODELS = "all models"
 
 
 #: the columns of figure2.csv and what each holds (the module docstring says the same)
@@ -188,43 +171,13 @@ def build_parser() -> argparse.ArgumentParser:
                     "file (--config) may give the same settings; flags override it.",
     )
     ct.add_argument("--config", metavar="FILE.toml",
-                    help="TOML file: a [surface] table with model = 'capillary' | 'self-affine' "
-                         "| 'topography' | 'psd' and its parameters (file = 'NAME' for the "
-                         "last two, relative to the TOML file); top-level e_star, pressures (or pressure_range = "
+                    help="TOML file: a [surface] table with model = "
+                         + " | ".join(f"'{name}'" for name in SURFACE_MODELS)
+                         + " and its parameters" + _path_keys_text()
+                         + "; top-level e_star, pressures (or pressure_range = "
                          "[pmin, pmax, n]), method, rtol, csv")
-    ct.add_argument("--surface", choices=("capillary", "self-affine"), help="surface model")
-    g = ct.add_argument_group("capillary-wave surface")
-    g.add_argument("--temperature", type=float, metavar="T", help="temperature [K]")
-    g.add_argument("--surface-tension", type=float, metavar="GAMMA", help="surface tension [J/m^2]")
-    g.add_argument("--q-c", type=float, metavar="QC", help="crossover wavevector [1/m]")
-    g.add_argument("--density", type=float, metavar="RHO", help="mass density [kg/m^3] (default 0)")
-    g.add_argument("--gravity", type=float, metavar="G", help="gravity [m/s^2] (default 9.81)")
-    g = ct.add_argument_group("self-affine surface")
-    g.add_argument("--hurst", type=float, metavar="H", help="Hurst exponent [-]")
-    g.add_argument("--q-r", type=float, metavar="QR", help="roll-off wavevector [1/m]")
-    g.add_argument("--h-rms", type=float, metavar="HRMS", help="rms height [m]")
-    g.add_argument("--slope-rms", type=float, metavar="S", help="rms slope [-]")
-    g.add_argument("--c0", type=float, metavar="C0", help="plateau of the spectrum [m^4]")
-    g = ct.add_argument_group(
-        "measured surface",
-        "a height map or line scan in any format SurfaceTopography reads (needs the extra: "
-        "pip install \"persson_fast[topography]\"), or a two-column spectrum file q, C "
-        "(Persson's isotropic 2-D C; units from its header 'q [1/m], C [m^4]' or the flags)")
-    g.add_argument("--topography", metavar="MAP",
-                   help="height map or line scan; q0 defaults to 2 pi/L, q1 to pi/pixel "
-                        "(or the file's reliability cut-off)")
-    g.add_argument("--psd", metavar="FILE.csv", help="two-column spectrum file q, C")
-    g.add_argument("--bins-per-decade", type=int, metavar="NBINS",
-                   help="log bins per decade of the measured spectrum (default 10)")
-    g.add_argument("--height-unit", metavar="HUNIT",
-                   help="length unit of a topography file that names none (m, mm, um, nm)")
-    g.add_argument("--physical-size", type=float, nargs="+", metavar="SIZE",
-                   help="scan size of a topography file that gives none, in --height-unit")
-    g.add_argument("--q-unit", metavar="QUNIT", help="unit of q in --psd (1/m, 1/mm, 1/um, 1/nm)")
-    g.add_argument("--c-unit", metavar="CUNIT", help="unit of C in --psd (m^4, um^4, nm^4)")
-    g = ct.add_argument_group("all models")
-    g.add_argument("--q0", type=float, metavar="Q0", help="smallest wavevector [1/m]")
-    g.add_argument("--q1", type=float, metavar="Q1", help="largest wavevector [1/m]")
+    ct.add_argument("--surface", choices=_surface_choices(), help="surface model")
+    _add_surface_flags(ct)
     ct.add_argument("--e-star", type=float, metavar="E", help="effective modulus E/(1-nu^2) [Pa]")
     g = ct.add_argument_group("adhesion")
     g.add_argument("--work-of-adhesion", type=float, metavar="DGAMMA",
@@ -274,6 +227,80 @@ def build_parser() -> argparse.ArgumentParser:
                    description="Print versions and threads, then compile (or load from the "
                                "cache) the kernels and print the seconds it took.")
     return parser
+
+
+# --------------------------------------------------------------------------------------------
+# the surface models' flags, from their declarations (persson_fast.surfaces.SURFACE_MODELS)
+# --------------------------------------------------------------------------------------------
+
+
+def _surface_choices() -> tuple:
+    """The models ``--surface`` picks: those without a flag of their own (``--psd FILE``)."""
+    return tuple(name for name, m in SURFACE_MODELS.items() if m.selector is None)
+
+
+def _selector_flags() -> dict:
+    """Model name -> (flag that picks it, its parameter) for the models that have one."""
+    return {name: (m.parameters[m.selector].flag_for(m.selector), m.parameters[m.selector])
+            for name, m in SURFACE_MODELS.items() if m.selector is not None}
+
+
+def _dest(flag: str) -> str:
+    """The attribute of the parsed flags that ``flag`` sets."""
+    return flag[2:].replace("-", "_")
+
+
+def _or(items) -> str:
+    items = list(items)
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " or " + items[-1]
+
+
+def _path_keys_text() -> str:
+    """' (file = 'NAME' for topography and psd, relative to the TOML file)' for --config."""
+    models = {}
+    for name, m in SURFACE_MODELS.items():
+        for key, p in m.parameters.items():
+            if p.path:
+                models.setdefault(key, []).append(name)
+    if not models:
+        return ""
+    parts = [f"{key} = 'NAME' for {' and '.join(names)}" for key, names in models.items()]
+    return f" ({'; '.join(parts)}, relative to the TOML file)"
+
+
+def _help_text(param, default) -> str:
+    """A flag's help: the declared text, the unit in brackets, the model's default."""
+    text = param.help
+    if param.unit is not None:
+        text += f" [{param.unit}]"
+    if default is not None:
+        text += f" (default {default:g})" if isinstance(default, float) else f" (default {default})"
+    return text
+
+
+def _add_surface_flags(parser) -> None:
+    """One flag per declared surface parameter, grouped by the first model that declares it;
+    the band (q0, q1) under 'all models', the flags that pick a model first in their group."""
+    owner = {}                      # flag -> (parameter name, Parameter, model, group title)
+    for model in SURFACE_MODELS.values():
+        for key, param in model.parameters.items():
+            flag = param.flag_for(key)
+            if flag not in owner:
+                owner[flag] = (key, param, model, _ALL_MODELS if key in BAND else model.title)
+    titles = list(dict.fromkeys(title for *_, title in owner.values() if title != _ALL_MODELS))
+    if any(title == _ALL_MODELS for *_, title in owner.values()):
+        titles.append(_ALL_MODELS)
+    for title in titles:
+        description = next((m.description for m in SURFACE_MODELS.values()
+                            if m.title == title and m.description), None)
+        group = parser.add_argument_group(title, description)
+        flags = [f for f, (*_, t) in owner.items() if t == title]
+        flags.sort(key=lambda f: not owner[f][1].selects)          # stable: pickers first
+        for flag in flags:
+            key, param, model, _ = owner[flag]
+            kwargs = {"nargs": param.nargs} if param.nargs else {}
+            group.add_argument(flag, type=param.type, metavar=param.metavar or key.upper(),
+                               help=_help_text(param, model.defaults().get(key)), **kwargs)
 
 
 # --------------------------------------------------------------------------------------------
@@ -568,39 +595,48 @@ def _resolve_contact(args) -> dict:
         raise CommandError("'surface' in --config must be a table ([surface])")
     surf_cfg = dict(surf_cfg)
 
-    from_flags = [m for m, flag in (("topography", args.topography), ("psd", args.psd)) if flag]
+    selectors = _selector_flags()
+    from_flags = [name for name, (flag, _) in selectors.items()
+                  if getattr(args, _dest(flag), None)]
     if len(from_flags) > 1 or (from_flags and args.surface):
-        raise CommandError("give one of --surface, --topography, --psd")
+        raise CommandError("give one of " + ", ".join(
+            ["--surface", *(flag for flag, _ in selectors.values())]))
     model = (from_flags[0] if from_flags else None) or args.surface or surf_cfg.pop("model", None)
     surf_cfg.pop("model", None)
     if model is None:
-        raise CommandError("no surface model: give --surface {capillary,self-affine}, "
-                           "--topography FILE or --psd FILE, or model = ... in the [surface] "
-                           "table of --config")
-    if model not in _SURFACE_KEYS:
+        picks = [f"{flag} {'FILE' if p.path else p.metavar or 'VALUE'}"
+                 for flag, p in selectors.values()]
+        raise CommandError("no surface model: give " + _or(
+            [f"--surface {{{','.join(_surface_choices())}}}", *picks])
+            + ", or model = ... in the [surface] table of --config")
+    if model not in SURFACE_MODELS:
         raise CommandError(
-            f"surface model must be one of {', '.join(_SURFACE_KEYS)}; got {model!r}")
-    keys = _SURFACE_KEYS[model]
+            f"surface model must be one of {', '.join(SURFACE_MODELS)}; got {model!r}")
+    declared = SURFACE_MODELS[model].parameters
+    keys = tuple(declared)
     unknown = sorted(set(surf_cfg) - set(keys))
     if unknown:
         raise CommandError(f"unknown [surface] key(s) for model {model!r}: {', '.join(unknown)}; "
                            f"expected {', '.join(keys)}")
-    params = {k: _config_value(k, v, args.config) for k, v in surf_cfg.items()}
-    for key in keys:
-        attr = _ATTR_OF.get(key, key.lower())
-        value = getattr(args, attr) if attr else getattr(args, model, None)
+    params = {k: _config_value(k, v, args.config, declared[k]) for k, v in surf_cfg.items()}
+    own_flags = {p.flag_for(k) for k, p in declared.items()}
+    for key, param in declared.items():
+        value = getattr(args, _dest(param.flag_for(key)), None)
         if value is not None:
             params[key] = value
-    # flags of the other model are an error, not silently ignored
-    other = {k for m, ks in _SURFACE_KEYS.items() if m != model for k in ks} - set(keys)
-    stray = [_FLAG_OF[k] for k in sorted(other)
-             if _ATTR_OF.get(k, k.lower()) and getattr(args, _ATTR_OF.get(k, k.lower())) is not None]
+    # flags of the other models are an error, not silently ignored (a flag that picks a
+    # model is the conflict above)
+    stray = sorted({(k, p.flag_for(k)) for m in SURFACE_MODELS.values()
+                    for k, p in m.parameters.items()
+                    if not p.selects and p.flag_for(k) not in own_flags
+                    and getattr(args, _dest(p.flag_for(k)), None) is not None})
     if stray:
-        raise CommandError(f"{', '.join(stray)} do(es) not apply to surface model {model!r}")
-    missing = [k for k in _REQUIRED[model] if k not in params]
+        raise CommandError(f"{', '.join(flag for _, flag in stray)} do(es) not apply to surface "
+                           f"model {model!r}")
+    missing = [k for k in SURFACE_MODELS[model].required if k not in params]
     if missing:
         raise CommandError(f"surface model {model!r} needs " + ", ".join(
-            f"{_FLAG_OF[k]} (or {k} in [surface])" for k in missing))
+            f"{declared[k].flag_for(k)} (or {k} in [surface])" for k in missing))
 
     e_star = args.e_star if args.e_star is not None else cfg.get("e_star")
     if e_star is None:
@@ -684,41 +720,25 @@ def _pressure_range(pmin, pmax, n) -> np.ndarray:
     return np.linspace(float(pmin), float(pmax), int(n))
 
 
-def _config_value(key, value, config_path):
-    """A [surface] value: text for file names and units (a relative file name is taken from
-    the folder of the config file), a list of numbers for physical_sizes, else a number."""
-    if key in _TEXT_KEYS:
+def _config_value(key, value, config_path, param):
+    """A [surface] value as its declaration says: text (a relative file name is taken from the
+    folder of the config file), a list of numbers, or a number."""
+    if param.type is str:
         if not isinstance(value, str):
             raise CommandError(f"surface.{key} must be a string; got {value!r}")
-        if key == "file" and config_path and not os.path.isabs(value):
+        if param.path and config_path and not os.path.isabs(value):
             value = os.path.join(os.path.dirname(os.path.abspath(config_path)), value)
         return value
-    if key == "physical_sizes":
+    if param.nargs:
         raw = value if isinstance(value, list) else [value]
-        return [_number(v, "surface.physical_sizes") for v in raw]
-    return _number(value, f"surface.{key}")
+        return [_number(v, f"surface.{key}") for v in raw]
+    number = _number(value, f"surface.{key}")
+    return int(number) if param.type is int else number
 
 
 def _make_surface(model: str, params: dict):
-    import persson_fast as pf
-
-    if model == "capillary":
-        return pf.CapillaryWaves(**params)
-    if model == "psd":
-        return pf.TabulatedPSD.from_file(params["file"], q_unit=params.get("q_unit"),
-                                         C_unit=params.get("C_unit"), q0=params.get("q0"),
-                                         q1=params.get("q1"))
-    if model == "topography":
-        from .topography import read_topography
-
-        sizes = params.get("physical_sizes")
-        topography = read_topography(params["file"], unit=params.get("unit"),
-                                     physical_sizes=tuple(sizes) if sizes else None)
-        extra = {k: params[k] for k in ("q0", "q1", "hurst") if k in params}
-        if "bins_per_decade" in params:
-            extra["bins_per_decade"] = int(params["bins_per_decade"])
-        return pf.TabulatedPSD.from_topography(topography, **extra)
-    return pf.SelfAffine(**params)
+    """The surface of a declared model (``SURFACE_MODELS[model].build(**params)``)."""
+    return SURFACE_MODELS[model].build(**params)
 
 
 def _cmd_contact(args) -> int:

@@ -76,7 +76,7 @@ from .scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, default_zeta, unpac
 from .theories import THEORIES, check_theory, check_theory_scene
 from .methods import METHODS
 from .plasticity import check_hardness
-from .surfaces import Surface
+from .surfaces import SURFACE_MODELS, Surface
 
 __all__ = ["scan", "solve_chunk", "ScanWarning", "SCENE_ERROR", "SOLVE_PARAMETERS",
            "PARAMETER_UNITS"]
@@ -95,26 +95,38 @@ _SOLVE_DEFAULTS = {
     "hardness": None,
 }
 
-#: units of the parameters of the package's surface models and of the solve, for ``attrs``
-PARAMETER_UNITS = {
+#: units of the solve parameters
+_SOLVE_UNITS = {
     "e_star": "Pa",
     "work_of_adhesion": "J/m^2",
     "energy_correction": "-",
     "detachment_prefactor": "-",
     "hardness": "Pa",
-    "hurst": "-",
-    "q0": "1/m",
-    "q1": "1/m",
-    "q_r": "1/m",
-    "h_rms": "m",
-    "slope_rms": "-",
-    "C0": "m^4",
-    "temperature": "K",
-    "surface_tension": "J/m^2",
-    "q_c": "1/m",
-    "density": "kg/m^3",
-    "gravity": "m/s^2",
 }
+
+
+def _declared_units(parameters) -> dict:
+    """name -> unit of declared surface parameters (those with a unit)."""
+    return {k: p.unit for k, p in parameters.items() if p.unit is not None}
+
+
+#: units of the parameters of the package's surface models (from their declarations,
+#: ``persson_fast.surfaces.SURFACE_MODELS``) and of the solve, for ``attrs``; a scan of any
+#: declared model takes its units from its own declaration
+PARAMETER_UNITS = {**{k: u for m in SURFACE_MODELS.values()
+                      for k, u in _declared_units(m.parameters).items()}, **_SOLVE_UNITS}
+
+
+def _parameter_units(factory) -> dict:
+    """Units of the parameters a scan of ``factory`` may have: its declaration where it has
+    one (a Surface subclass's ``PARAMETERS``, a registered model's build, also inside a
+    functools.partial), over :data:`PARAMETER_UNITS`; the solve parameters' own always."""
+    inner = getattr(factory, "func", factory)
+    declared = next((m.parameters for m in SURFACE_MODELS.values() if m.build is inner), None)
+    if declared is None and isinstance(inner, type) and issubclass(inner, Surface):
+        declared = inner.PARAMETERS
+    return {**PARAMETER_UNITS, **_declared_units(declared or {}), **_SOLVE_UNITS}
+
 
 #: keys that cannot be scan parameters (they name the result's own axes)
 _RESERVED = ("pressure", "zeta")
@@ -321,15 +333,16 @@ def _factory_parameters(factory):
     return tuple(names)
 
 
-def _check_values(name, values):
-    """One entry of ``params``: (is_dimension, coordinate array, values to pass on)."""
+def _check_values(name, values, unit="-"):
+    """One entry of ``params``: (is_dimension, coordinate array, values to pass on); ``unit``
+    is the parameter's, for the messages."""
     label = f"params[{name!r}]"
     if isinstance(values, (str, bytes)) or np.ndim(values) == 0:
         if name in _NONE_ALLOWED and values is None:
             return False, np.array(np.nan), [None]
         arr = np.asarray(values)
         if arr.dtype.kind in "iuf":
-            check_finite(arr.astype(float), label, PARAMETER_UNITS.get(name, "-"))
+            check_finite(arr.astype(float), label, unit)
         return False, arr, [values.item() if isinstance(values, np.generic) else values]
     try:
         raw = list(values)
@@ -351,7 +364,7 @@ def _check_values(name, values):
             values_out = [None if math.isnan(v) else v for v in values_out]
         elif not np.all(finite):
             i = int(np.argmin(finite))
-            raise ValueError(f"{label} must be finite [{PARAMETER_UNITS.get(name, '-')}]; "
+            raise ValueError(f"{label} must be finite [{unit}]; "
                              f"got {label}[{i}] = {arr[i].item()!r}")
     else:
         arr = np.empty(len(raw), dtype=object)
@@ -386,7 +399,7 @@ def _check_solve_value(name, value, label, axis=False):
             raise ValueError(f"{label} must lie in [0, 1] [-] (or be None); "
                              f"got {label} = {float(arr)!r}")
         return float(arr)
-    unit = PARAMETER_UNITS[name]
+    unit = _SOLVE_UNITS[name]
     arr = as_float_array(value, label, unit, ndim=(0,))
     if name == "work_of_adhesion":
         check_nonnegative(arr, label, unit)
@@ -504,6 +517,7 @@ class _Grid:
         self.factory = surface
         self.factory_name = _factory_name(surface)
         accepted = () if is_instance else _factory_parameters(surface)
+        self.units = _parameter_units(surface)
         self.dims, self.coords, self.values = [], {}, {}
         self.fixed_coords, fixed = {}, {}
         for name, values in params.items():
@@ -526,7 +540,7 @@ class _Grid:
                         f"params key {name!r} is neither a parameter of {self.factory_name} "
                         f"({', '.join(accepted)}) nor a solve parameter "
                         f"({', '.join(SOLVE_PARAMETERS)})")
-            is_dim, coord, passed = _check_values(name, values)
+            is_dim, coord, passed = _check_values(name, values, self.units.get(name, "-"))
             if is_dim:
                 self.dims.append(name)
                 self.coords[name] = coord
@@ -1159,11 +1173,11 @@ def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
         "method": (dims, stack("method", object).astype(str),
                    {"long_name": "method that produced the numbers"}),
     }
-    coords = {d: (d, grid.coords[d], {"units": PARAMETER_UNITS[d]} if d in PARAMETER_UNITS else {})
+    coords = {d: (d, grid.coords[d], {"units": grid.units[d]} if d in grid.units else {})
               for d in dims}
     coords["pressure"] = ("pressure", p, {"long_name": "nominal pressure", "units": "Pa"})
     for name, value in grid.fixed_coords.items():
-        units = {"units": PARAMETER_UNITS[name]} if name in PARAMETER_UNITS else {}
+        units = {"units": grid.units[name]} if name in grid.units else {}
         coords[name] = ((), value, units)
     coords.update(grid.aux_coords)
     if options["profiles"]:

@@ -28,14 +28,23 @@ The public classes are :class:`CapillaryWaves` (seed Eq. 1), :class:`SelfAffine`
 with roll-off) and :class:`TabulatedPSD` (measured spectra, log-log interpolated). All three
 share :class:`Surface`, whose :meth:`Surface.moment` returns the partial moments
 :math:`\\int q^k C dq` (k = 0..3) in closed form wherever one exists. SI units, float64.
+
+Surface models declare their parameters once: a subclass that sets ``MODEL`` (its name on the
+command line and in TOML files) and ``PARAMETERS`` (name -> :class:`Parameter`: unit, help,
+whether required) enters :data:`SURFACE_MODELS` when its class is created, in whatever module
+that happens. The ``persson-fast contact`` command builds its flags and TOML keys from that
+registry, and :func:`persson_fast.scan` reads the units of a declared class's parameters from
+it; neither keeps its own list.
 """
 from __future__ import annotations
 
 import abc
+import inspect
 import math
 import os
 import sys
 import warnings
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -45,6 +54,12 @@ __all__ = [
     "BOLTZMANN",
     "E_STAR_WARN_BELOW",
     "RmsValue",
+    "Parameter",
+    "SurfaceModel",
+    "SURFACE_MODELS",
+    "BAND",
+    "band_parameters",
+    "register_surface_model",
     "Surface",
     "CapillaryWaves",
     "SelfAffine",
@@ -236,6 +251,196 @@ def _gauss_legendre_log(integrand_t, a: np.ndarray, b: np.ndarray) -> np.ndarray
 # ----------------------------------------------------------------------------------------------
 # the base class
 # ----------------------------------------------------------------------------------------------
+# ----------------------------------------------------------------------------------------------
+# declared parameters and the registry of surface models
+# ----------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Parameter:
+    """One declared parameter of a surface model.
+
+    Parameters
+    ----------
+    unit : str or None
+        SI unit of the value as the model takes it ('m', '1/m', 'J/m^2', '-' for a
+        dimensionless number); None for text (file names, unit names), counts and values in a
+        unit chosen by another parameter. The command line's help shows it in brackets, and
+        :func:`persson_fast.scan` labels its axes with it.
+    help : str
+        What the parameter is, without the unit (e.g. 'rms height').
+    required : bool, optional
+        Whether the model needs it (default False). [-]
+    metavar : str, optional
+        The value's name in the command line's help; default the parameter's name in capitals.
+    flag : str, optional
+        The command-line flag; default ``--`` and the name in lower case with '-' for '_'
+        (``h_rms`` -> ``--h-rms``, ``C0`` -> ``--c0``).
+    type : {float, int, str}, optional
+        The type of the value (default float); str for text, which TOML must give as a string.
+    nargs : str, optional
+        '+' for a list of numbers (argparse's nargs); default one value.
+    path : bool, optional
+        A file name: in a TOML file taken relative to the TOML file's folder (default False).
+    selects : bool, optional
+        Its flag also picks the model (``--psd FILE``); such a model is not one of the choices
+        of ``--surface`` (default False).
+
+    Notes
+    -----
+    The default a model uses when a parameter is not given is its constructor's (the help
+    shows it, read from the signature); every flag's own default is "not given".
+    """
+
+    unit: str | None
+    help: str
+    required: bool = False
+    metavar: str | None = None
+    flag: str | None = None
+    type: type = float
+    nargs: str | None = None
+    path: bool = False
+    selects: bool = False
+
+    def flag_for(self, name: str) -> str:
+        """The command-line flag of the parameter ``name``."""
+        return self.flag or "--" + name.lower().replace("_", "-")
+
+
+@dataclass(frozen=True)
+class SurfaceModel:
+    """A surface model as the command line and :func:`persson_fast.scan` see it.
+
+    Parameters
+    ----------
+    name : str
+        The model's name: ``--surface NAME``, ``model = 'NAME'`` in a TOML file.
+    parameters : dict of str to Parameter
+        The keyword arguments of ``build`` the model offers, in the order shown.
+    build : callable
+        ``build(**values)`` returns the :class:`Surface`; it gets the parameters that were
+        given, no others.
+    title : str
+        Title of the model's group of flags in the command line's help.
+    description : str, optional
+        Text under that title.
+    """
+
+    name: str
+    parameters: dict
+    build: object
+    title: str
+    description: str | None = None
+
+    @property
+    def required(self) -> tuple:
+        """Names of the parameters the model needs."""
+        return tuple(k for k, p in self.parameters.items() if p.required)
+
+    @property
+    def selector(self):
+        """Name of the parameter whose flag picks the model, or None."""
+        return next((k for k, p in self.parameters.items() if p.selects), None)
+
+    def defaults(self) -> dict:
+        """The defaults ``build`` uses for the parameters it has one for (not None)."""
+        try:
+            sig = inspect.signature(self.build)
+        except (TypeError, ValueError):
+            return {}
+        return {k: v.default for k, v in sig.parameters.items()
+                if k in self.parameters and v.default is not inspect.Parameter.empty
+                and v.default is not None}
+
+
+#: the surface models by name, in the order they were registered (the package's own first:
+#: capillary, self-affine, topography, psd)
+SURFACE_MODELS: dict = {}
+
+#: names of the band limits every model has; the command line lists their flags once
+BAND = ("q0", "q1")
+
+_MODEL_NAME_CHARS = frozenset("abcdefghijklmnopqrstuvwxyz0123456789-")
+
+
+def band_parameters(required: bool = True) -> dict:
+    """The declarations of the band limits q0 and q1 (for a model's ``PARAMETERS``).
+
+    Parameters
+    ----------
+    required : bool, optional
+        Whether the model needs them (default True); measured spectra have their own. [-]
+    """
+    return {"q0": Parameter("1/m", "smallest wavevector", required=required),
+            "q1": Parameter("1/m", "largest wavevector", required=required)}
+
+
+def register_surface_model(model: SurfaceModel) -> SurfaceModel:
+    """Add ``model`` to :data:`SURFACE_MODELS` (a model of the same name and the same build
+    replaces it: a module imported again); return it.
+
+    A :class:`Surface` subclass that sets ``MODEL`` is registered when it is created; call this
+    for a model built by another function (as ``TabulatedPSD.from_file`` for 'psd').
+
+    Raises
+    ------
+    ValueError
+        For a name that is not lower-case letters, digits and '-', a name another model
+        has, a parameter that is not a :class:`Parameter` or not a keyword of ``build``, more
+        than one parameter that ``selects``, or a flag another model declares with another
+        type or number of values.
+    """
+    if not isinstance(model, SurfaceModel):
+        raise ValueError(f"model must be a SurfaceModel; got {type(model).__name__}")
+    name = model.name
+    if not isinstance(name, str) or not name or not set(name) <= _MODEL_NAME_CHARS \
+            or name.startswith("-"):
+        raise ValueError(f"a surface model name must be lower-case letters, digits and '-' "
+                         f"(a command-line choice); got name = {name!r}")
+    old = SURFACE_MODELS.get(name)
+    if old is not None and _origin(old.build) != _origin(model.build):
+        raise ValueError(f"surface model {name!r} is registered already (built by "
+                         f"{_origin(old.build)}); choose another name")
+    if not isinstance(model.parameters, dict):
+        raise ValueError(f"parameters of surface model {name!r} must be a dict of name to "
+                         f"Parameter; got {type(model.parameters).__name__}")
+    try:
+        sig = inspect.signature(model.build)
+        takes = None if any(p.kind is inspect.Parameter.VAR_KEYWORD
+                            for p in sig.parameters.values()) else set(sig.parameters)
+    except (TypeError, ValueError):
+        takes = None
+    for key, p in model.parameters.items():
+        if not isinstance(p, Parameter):
+            raise ValueError(f"parameter {key!r} of surface model {name!r} must be a Parameter; "
+                             f"got {p!r}")
+        if not isinstance(key, str) or not key.isidentifier():
+            raise ValueError(f"parameter names of surface model {name!r} must be identifiers "
+                             f"(keyword arguments); got {key!r}")
+        if takes is not None and key not in takes:
+            raise ValueError(f"parameter {key!r} of surface model {name!r} is not a keyword "
+                             f"argument of its build {_origin(model.build)}")
+        flag = p.flag_for(key)
+        for other in SURFACE_MODELS.values():
+            if other.name == name:
+                continue
+            for okey, op in other.parameters.items():
+                if op.flag_for(okey) == flag and (op.type, op.nargs) != (p.type, p.nargs):
+                    raise ValueError(
+                        f"flag {flag} of surface model {name!r} (parameter {key!r}) is "
+                        f"declared by model {other.name!r} with type {op.type.__name__}, "
+                        f"nargs {op.nargs!r}; got type {p.type.__name__}, nargs {p.nargs!r}")
+    if sum(p.selects for p in model.parameters.values()) > 1:
+        raise ValueError(f"surface model {name!r} may have one parameter that selects it; got "
+                         f"{', '.join(k for k, p in model.parameters.items() if p.selects)}")
+    SURFACE_MODELS[name] = model
+    return model
+
+
+def _origin(build) -> str:
+    inner = getattr(build, "__func__", build)
+    return f"{getattr(inner, '__module__', '?')}.{getattr(inner, '__qualname__', repr(inner))}"
+
+
+
 class RmsValue(float):
     """A float that may also be called: ``s.h_rms`` and ``s.h_rms()`` are the same number.
 
@@ -261,6 +466,12 @@ class Surface(abc.ABC):
     ``h_rms`` and ``slope_rms`` are properties whose value (a :class:`RmsValue`) is a float
     that may also be called: ``s.h_rms * 1e9`` and ``s.h_rms()`` both work.
 
+    A subclass declares its parameters once, for the command line and
+    :func:`persson_fast.scan`: ``MODEL`` (its name there), ``PARAMETERS`` (name ->
+    :class:`Parameter`, the constructor's keyword arguments) and optionally ``MODEL_TITLE`` and
+    ``MODEL_DESCRIPTION`` (its group in the command line's help). Setting ``MODEL`` registers it
+    in :data:`SURFACE_MODELS` when the class is created.
+
     Attributes
     ----------
     q0 : float
@@ -271,6 +482,18 @@ class Surface(abc.ABC):
 
     q0: float
     q1: float
+
+    #: the declared parameters (name -> Parameter), for the command line and scan
+    PARAMETERS: dict = {}
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        name = cls.__dict__.get("MODEL")
+        if name is not None:
+            register_surface_model(SurfaceModel(
+                name=name, parameters=dict(cls.PARAMETERS), build=cls,
+                title=cls.__dict__.get("MODEL_TITLE") or f"{name} surface",
+                description=cls.__dict__.get("MODEL_DESCRIPTION")))
 
     # --- values derived once per instance ----------------------------------------------------
     def __setattr__(self, name, value):
@@ -593,6 +816,17 @@ class CapillaryWaves(Surface):
     ln q axis, which gives a relative error below 1e-13.
     """
 
+    MODEL = "capillary"
+    MODEL_TITLE = "capillary-wave surface"
+    PARAMETERS = {
+        "temperature": Parameter("K", "temperature", required=True, metavar="T"),
+        "surface_tension": Parameter("J/m^2", "surface tension", required=True, metavar="GAMMA"),
+        "q_c": Parameter("1/m", "crossover wavevector", required=True, metavar="QC"),
+        **band_parameters(),
+        "density": Parameter("kg/m^3", "mass density", metavar="RHO"),
+        "gravity": Parameter("m/s^2", "gravity", metavar="G"),
+    }
+
     def __init__(self, temperature, surface_tension, q_c, q0, q1, density=0.0, gravity=9.81):
         self.temperature = _positive_scalar(temperature, "temperature", "K")
         self.surface_tension = _positive_scalar(surface_tension, "surface_tension", "J/m^2")
@@ -758,6 +992,16 @@ class SelfAffine(Surface):
     H=½; k=3, H=1) come out exactly and σ near 0 keeps full precision. The normalisations are
     C0 = h_rms²/(2π m1) and C0 = slope_rms²/(2π m3), m_k being the k-th moment at C0 = 1.
     """
+
+    MODEL = "self-affine"
+    PARAMETERS = {
+        "hurst": Parameter("-", "Hurst exponent", required=True, metavar="H"),
+        **band_parameters(),
+        "q_r": Parameter("1/m", "roll-off wavevector", metavar="QR"),
+        "h_rms": Parameter("m", "rms height", metavar="HRMS"),
+        "slope_rms": Parameter("-", "rms slope", metavar="S"),
+        "C0": Parameter("m^4", "plateau of the spectrum"),
+    }
 
     def __init__(self, hurst, q0, q1, q_r=None, h_rms=None, slope_rms=None, C0=None):
         self.hurst = _check_hurst(hurst)
@@ -1148,6 +1392,65 @@ class TabulatedPSD(Surface):
     def breakpoints(self) -> np.ndarray:
         inner = self.q_table[(self.q_table > self.q0) & (self.q_table < self.q1)]
         return np.concatenate(([self.q0], inner, [self.q1]))
+
+
+# the measured spectra: TabulatedPSD from a height map or line scan, or from a spectrum file
+_MEASURED_TITLE = "measured surface"
+_MEASURED_TEXT = (
+    "a height map or line scan in any format SurfaceTopography reads (needs the extra: "
+    "pip install \"persson_fast[topography]\"), or a two-column spectrum file q, C "
+    "(Persson's isotropic 2-D C; units from its header 'q [1/m], C [m^4]' or the flags)")
+
+
+def _surface_from_topography_file(file, q0=None, q1=None, hurst=None, bins_per_decade=10,
+                                  unit=None, physical_sizes=None) -> TabulatedPSD:
+    """The 'topography' model: :meth:`TabulatedPSD.from_topography` of a file read with
+    :func:`persson_fast.topography.read_topography`."""
+    from .topography import read_topography
+
+    topography = read_topography(file, unit=unit,
+                                 physical_sizes=tuple(physical_sizes) if physical_sizes else None)
+    return TabulatedPSD.from_topography(topography, q0=q0, q1=q1, hurst=hurst,
+                                        bins_per_decade=int(bins_per_decade))
+
+
+def _surface_from_spectrum_file(file, q_unit=None, C_unit=None, q0=None, q1=None) -> TabulatedPSD:
+    """The 'psd' model: :meth:`TabulatedPSD.from_file`."""
+    return TabulatedPSD.from_file(file, q_unit=q_unit, C_unit=C_unit, q0=q0, q1=q1)
+
+
+register_surface_model(SurfaceModel(
+    name="topography",
+    parameters={
+        "file": Parameter(None, "height map or line scan; q0 defaults to 2 pi/L, q1 to "
+                                "pi/pixel (or the file's reliability cut-off)",
+                          required=True, metavar="MAP", flag="--topography", type=str,
+                          path=True, selects=True),
+        **band_parameters(required=False),
+        "hurst": Parameter("-", "Hurst exponent of the 1-D to 2-D conversion of line scans "
+                                "(default fitted)", metavar="H"),
+        "bins_per_decade": Parameter(None, "log bins per decade of the measured spectrum",
+                                     metavar="NBINS", type=int),
+        "unit": Parameter(None, "length unit of a topography file that names none (m, mm, um, "
+                                "nm)", metavar="HUNIT", flag="--height-unit", type=str),
+        "physical_sizes": Parameter(None, "scan size of a topography file that gives none, in "
+                                          "--height-unit", metavar="SIZE",
+                                    flag="--physical-size", nargs="+"),
+    },
+    build=_surface_from_topography_file, title=_MEASURED_TITLE, description=_MEASURED_TEXT))
+
+register_surface_model(SurfaceModel(
+    name="psd",
+    parameters={
+        "file": Parameter(None, "two-column spectrum file q, C", required=True,
+                          metavar="FILE.csv", flag="--psd", type=str, path=True, selects=True),
+        "q_unit": Parameter(None, "unit of q in --psd (1/m, 1/mm, 1/um, 1/nm)", metavar="QUNIT",
+                            type=str),
+        "C_unit": Parameter(None, "unit of C in --psd (m^4, um^4, nm^4)", metavar="CUNIT",
+                            type=str),
+        **band_parameters(required=False),
+    },
+    build=_surface_from_spectrum_file, title=_MEASURED_TITLE, description=_MEASURED_TEXT))
 
 
 #: Young's modulus of the seed's PMMA. [Pa]
