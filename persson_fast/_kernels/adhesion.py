@@ -19,6 +19,12 @@ contact branch (its iterates map to "no adhesion anywhere"; or the step safeguar
 the iterate at the wall and the map again puts the wall past the start, sigma0 + F(x)_0 <= 0;
 or it stalls with a contact area below rtol) ends in the separated state A = 0; contact
 solutions beyond the end of the contact branch are not searched for.
+
+Two additions share the fixed point (see :func:`solve_adhesive_one`): a yield wall sigma_Y
+(every diffusion solve is then the two-wall solver of :mod:`.strip`, Eqs. 8-9 as
+:func:`yield_detachment_update`), and the corrected theories yp08 and wm17 (the diffusion in
+the corrected time T(G) = int S(A) dG, T iterated together with sigma_a). Both also stop only
+when the area at zeta1 has settled (``AREA_SETTLE``).
 """
 from __future__ import annotations
 
