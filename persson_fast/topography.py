@@ -1,7 +1,7 @@
 """Measured surfaces: from height maps, line scans and spectrum files to C(q).
 
 This module turns what an instrument gives (a height map, one or several line scans, or a
-tabulated spectrum in a text file) into a :class:`~persson_fast.surfaces.TabulatedPSD` in
+tabulated spectrum in a text file) into a :class:`~persson_fast.tabulated.TabulatedPSD` in
 Persson's isotropic convention, and writes any surface's spectrum back to a CSV file. The
 public entry points are the classmethods ``TabulatedPSD.from_topography``,
 ``TabulatedPSD.from_heights``, ``TabulatedPSD.from_file`` and the method ``Surface.to_csv``;
@@ -289,7 +289,7 @@ def _conserving_table(edges, target, k: int):
     """Nodes (q, C) of a log-log table whose integral ∫ q^k C dq over each bin equals
     ``target`` (bins given by ``edges``), found by multiplicative sweeps from the bin
     densities."""
-    from .surfaces import TabulatedPSD
+    from .tabulated import TabulatedPSD
 
     lo, hi = edges[:-1], edges[1:]
     measure = (hi ** (k + 1) - lo ** (k + 1)) / (k + 1)
