@@ -34,7 +34,7 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
-from .similarity import SMOOTH_WALL, solve_variant
+from .similarity import SMOOTH_WALL, fill_state, solve_variant
 from .strip import N_DAMP as STRIP_N_DAMP
 from .strip import solve_strip
 from .theories import correction_factor
@@ -288,24 +288,14 @@ def wall_solve_two(G, x, g, sy, sigma0, rtol, onset, el, load, pl, pl_load, det_
     at the yield wall (sigma0 >= sy[0]) yielded from the start."""
     n = G.shape[0]
     if sigma0 >= sy[0]:                  # p_nom at the hardness: all yields at the start
-        for i in range(n):
-            el[i] = 0.0
-            load[i] = 0.0
-            pl[i] = 1.0
-            pl_load[i] = sigma0
-            det_a[i] = 0.0
-            det_l[i] = 0.0
-            err[i] = 0.0
+        fill_state(np.int64(0), n, 0.0, 0.0, 0.0, 0.0, 0.0, el, load, det_a, det_l, err)
+        pl[:] = 1.0
+        pl_load[:] = sigma0
         return st.OK
-    if sigma0 + x[0] <= 0.0:
-        for i in range(n):
-            el[i] = 0.0
-            load[i] = 0.0
-            pl[i] = 0.0
-            pl_load[i] = 0.0
-            det_a[i] = 1.0
-            det_l[i] = -sigma0
-            err[i] = 0.0
+    if sigma0 + x[0] <= 0.0:             # separated at the start
+        fill_state(np.int64(0), n, 0.0, 0.0, 1.0, -sigma0, 0.0, el, load, det_a, det_l, err)
+        pl[:] = 0.0
+        pl_load[:] = 0.0
         return st.OK
     if onset:
         Ga, xa, node, na = _augmented_wall(G, x, g)
