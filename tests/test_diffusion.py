@@ -196,6 +196,41 @@ def test_thomas_matches_solve_banded():
     assert np.max(np.abs(x - ref.thomas(lo, di, up, rhs))) < TWIN * np.max(np.abs(x)) * n
 
 
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 1e6])
+def test_thomas_continuants_stay_in_range(scale):
+    """The continuant form of the Thomas algorithm on systems whose pivot products leave the
+    double range without rescaling (2000 rows, pivots ~1e-3 ... ~1e6), solved in place."""
+    rng = np.random.default_rng(2)
+    n = 2000
+    lo, up = rng.uniform(-0.3, 0.3, size=n) * scale, rng.uniform(-0.3, 0.3, size=n) * scale
+    di = (1.0 + rng.uniform(size=n)) * scale
+    x_true = rng.normal(size=n)
+    rhs = di * x_true
+    rhs[1:] += lo[1:] * x_true[:-1]
+    rhs[:-1] += up[:-1] * x_true[1:]
+    if scale != 1.0:  # a plain product of the pivots would leave the double range
+        assert abs(np.sum(np.log10(di))) > 400
+    x = rhs.copy()
+    thomas(lo, di, up, x, np.empty(n), x)
+    assert np.all(np.isfinite(x))
+    assert np.max(np.abs(x - x_true)) < 1e-12 * np.max(np.abs(x_true))
+    assert np.max(np.abs(x - ref.thomas(lo, di, up, rhs))) < TWIN * np.max(np.abs(x)) * n
+
+
+def test_theta_step_large_steps_many_nodes():
+    """A theta step whose pivots (~dt/h^2 = 2e4) overflow a product over 2000 nodes."""
+    n_nodes = 2000
+    h = 5e-3
+    xi = np.arange(n_nodes) * h
+    p = xi * np.exp(-xi**2)
+    p[0] = p[-1] = 0.0
+    expected = ref.theta_step(p, h, 0.0, 1.0, 0.5, 0.5)
+    got = p.copy()
+    theta_step(got, h, 0.0, 1.0, 0.5, 0.5, *[np.empty(n_nodes) for _ in range(8)])
+    assert np.all(np.isfinite(got))
+    assert np.max(np.abs(got - expected)) < TWIN * 100
+
+
 @pytest.mark.parametrize("theta", [0.5, 1.0])
 @pytest.mark.parametrize("drift", [0.0, 3.0, -7.0])
 def test_theta_step_matches_dense(theta, drift):

@@ -8,6 +8,13 @@ import numpy as np
 from .._jit import njit_serial
 
 
+#: the continuants of :func:`thomas` and :func:`theta_step` (products of the pivots) are
+#: rescaled by an exact power of two when they leave [CONTINUANT_SMALL, CONTINUANT_BIG], so
+#: they neither overflow nor underflow while each pivot stays within 1e-180 ... 1e180
+CONTINUANT_BIG = 2.0 ** 400
+CONTINUANT_SMALL = 2.0 ** -400
+
+
 @njit_serial
 def theta_workspace(n):
     """The (n,) work arrays of a theta step (:func:`theta_step`, and the fixed-grid step):
@@ -18,31 +25,52 @@ def theta_workspace(n):
 
 @njit_serial
 def thomas(lower, diag, upper, rhs, scratch, out):
-    """Solve a tridiagonal system without pivoting (Thomas algorithm).
+    """Solve a tridiagonal system without pivoting (Thomas algorithm, with continuants).
 
     Parameters
     ----------
     lower : (n,) float64 -- sub-diagonal, ``lower[0]`` unused.
     diag : (n,) float64 -- main diagonal.
     upper : (n,) float64 -- super-diagonal, ``upper[n-1]`` unused.
-    rhs : (n,) float64 -- right-hand side (not modified).
+    rhs : (n,) float64 -- right-hand side (not modified unless ``out`` is ``rhs``).
     scratch : (n,) float64 -- workspace.
     out : (n,) float64 -- solution (may alias ``rhs``).
 
     Notes
     -----
-    Stable for the diagonally dominant matrices ``I - theta*dt*L`` produced here
-    (cell Peclet number <= 2). Cost: 8n flops, no allocation.
+    The pivots are beta_i = th_i / th_(i-1) with the continuants
+    th_i = diag_i th_(i-1) - lower_i upper_(i-1) th_(i-2), and the eliminated right-hand side
+    is Y_i / th_i with Y_i = th_(i-1) rhs_i - lower_i Y_(i-1): two linear recursions, so the
+    chain of dependent operations per row is a multiply and a subtract, and the one division
+    per row (1/th_i) is off it (the usual form has two divisions on the chain). The
+    continuants are kept in range by exact powers of two (CONTINUANT_BIG). Stable for the
+    diagonally dominant matrices ``I - theta*dt*L`` produced here (cell Peclet number <= 2).
     """
     n = diag.shape[0]
-    beta = diag[0]
-    out[0] = rhs[0] / beta
-    for i in range(1, n):
-        scratch[i] = upper[i - 1] / beta
-        beta = diag[i] - lower[i] * scratch[i]
-        out[i] = (rhs[i] - lower[i] * out[i - 1]) / beta
+    th_2 = 0.0
+    th_1 = 1.0
+    y_1 = 0.0
+    u_1 = 0.0
+    for i in range(n):
+        l_i = lower[i] if i > 0 else 0.0
+        t = diag[i] * th_1 - (l_i * u_1) * th_2
+        y = th_1 * rhs[i] - l_i * y_1
+        cq = upper[i] * th_1 if i < n - 1 else 0.0
+        if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
+            f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
+            t *= f
+            th_1 *= f
+            y *= f
+            cq *= f
+        r = 1.0 / t
+        out[i] = y * r
+        scratch[i] = cq * r
+        th_2 = th_1
+        th_1 = t
+        y_1 = y
+        u_1 = upper[i] if i < n - 1 else 0.0
     for i in range(n - 2, -1, -1):
-        out[i] -= scratch[i + 1] * out[i + 1]
+        out[i] -= scratch[i] * out[i + 1]
 
 
 @njit_serial
@@ -86,19 +114,66 @@ def theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs, 
     """One theta-step ``(I - theta dt L) p_new = (I + (1-theta) dt L) p`` in place.
 
     ``p`` holds all nodes (p[0] and p[-1] are the Dirichlet zeros). theta = 1/2 is
-    Crank-Nicolson, theta = 1 implicit Euler.
+    Crank-Nicolson, theta = 1 implicit Euler. L is the operator of
+    :func:`operator_coefficients`, whose coefficients are linear in the node index
+    (lo_j = lo0 - j, up_j = up0 + j, a constant diagonal), so they are formed in the loop.
+
+    The tridiagonal solve is the Thomas algorithm written with continuants: the pivots are
+    beta_k = th_k / th_(k-1) with th_k = b_k th_(k-1) - a_k c_(k-1) th_(k-2), and the
+    eliminated right-hand side is Y_k / th_k with Y_k = th_(k-1) d_k - a_k Y_(k-1). Both are
+    linear recursions without a division, so the forward sweep's chain of dependent
+    operations is a multiply and a subtract per node instead of two divisions; the back
+    substitution x_k = Y_k / th_k - (c_k th_(k-1) / th_k) x_(k+1) takes the two ratios from
+    the forward sweep, where their division is off the chain. The continuants are kept in
+    range by exact powers of two (CONTINUANT_BIG). The matrices here are diagonally dominant
+    M-matrices (cell Peclet number <= 2), for which the recursion is as stable as the usual
+    form. Only ``di`` and
+    ``up`` of the workspace are used (for the two ratios); the other arguments are kept for
+    the callers' workspace of :func:`theta_workspace`.
     """
-    n_nodes = p.shape[0]
-    m = n_nodes - 2
-    operator_coefficients(h, drift, diff, n_nodes, lo, di, up)
+    m = p.shape[0] - 2
+    inv_h2 = diff / (h * h)
+    dh = drift * (0.5 / h)
+    lo0 = inv_h2 + 0.5 + dh
+    up0 = inv_h2 + 0.5 - dh
+    d_l = 1.0 - 2.0 * inv_h2
     e = (1.0 - theta) * dt
     i_ = theta * dt
+    b = 1.0 - i_ * d_l
+    e_d = 1.0 + e * d_l
+    th_2 = 0.0
+    th_1 = 1.0
+    y_1 = 0.0
+    c_1 = 0.0
+    p_l = p[0]
+    p_c = p[1]
     for k in range(m):
-        j = k + 1
-        rhs[k] = p[j] + e * (lo[k] * p[j - 1] + di[k] * p[j] + up[k] * p[j + 1])
-        a_lo[k] = -i_ * lo[k]
-        a_di[k] = 1.0 - i_ * di[k]
-        a_up[k] = -i_ * up[k]
-    thomas(a_lo[:m], a_di[:m], a_up[:m], rhs[:m], scratch[:m], rhs[:m])
-    for k in range(m):
-        p[k + 1] = rhs[k]
+        jf = k + 1.0
+        l_k = lo0 - jf
+        u_k = up0 + jf
+        p_r = p[k + 2]
+        d = e_d * p_c + e * (l_k * p_l + u_k * p_r)
+        a = -i_ * l_k
+        c = -i_ * u_k
+        t = b * th_1 - (a * c_1) * th_2
+        y = th_1 * d - a * y_1
+        cq = c * th_1
+        if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
+            f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
+            t *= f
+            th_1 *= f
+            y *= f
+            cq *= f
+        r = 1.0 / t
+        di[k] = y * r
+        up[k] = cq * r
+        th_2 = th_1
+        th_1 = t
+        y_1 = y
+        c_1 = c
+        p_l = p_c
+        p_c = p_r
+    x = 0.0
+    for k in range(m - 1, -1, -1):
+        x = di[k] - up[k] * x
+        p[k + 1] = x
