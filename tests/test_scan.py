@@ -18,6 +18,9 @@ from persson_fast.scan import scan  # noqa: E402  (after the optional-dependency
 
 # the module itself (``persson_fast.scan`` may be shadowed by the function in the package)
 scan_module = importlib.import_module("persson_fast.scan")
+#: where a scan's scenes are solved (the names a test patches: solve_contact, _pull_off,
+#: _stderr_is_terminal are looked up there)
+scan_run = importlib.import_module("persson_fast.scan_run")
 
 E_STAR = 2.9e9 / (1.0 - 0.3**2)             # seed PMMA [Pa]
 SEED = pf.seed_scene()
@@ -210,7 +213,7 @@ def test_progress_bar_on_off_and_callback(capsys, monkeypatch):
     assert capsys.readouterr().err == ""
     scan(pf.SelfAffine, params, [1e6], e_star=1e9)           # None, stderr not a terminal
     assert capsys.readouterr().err == ""
-    monkeypatch.setattr(scan_module, "_stderr_is_terminal", lambda: True)
+    monkeypatch.setattr(scan_run, "_stderr_is_terminal", lambda: True)
     scan(pf.SelfAffine, params, [1e6], e_star=1e9)           # None, terminal, > 50 scenes
     assert "60/60" in capsys.readouterr().err
     scan(pf.SelfAffine, {**params, "hurst": [0.5, 0.6]}, [1e6], e_star=1e9)  # short scan
@@ -246,14 +249,14 @@ def _scan_warnings(record):
 def _fail_at(monkeypatch, name, hursts, exc):
     """Make scan's ``name`` (``solve_contact`` or ``_pull_off``) raise ``exc`` for the scenes
     whose surface has one of the Hurst exponents ``hursts``."""
-    real = getattr(scan_module, name)
+    real = getattr(scan_run, name)
 
     def fake(surface, *args, **kwargs):
         if getattr(surface, "hurst", None) in hursts:
             raise exc
         return real(surface, *args, **kwargs)
 
-    monkeypatch.setattr(scan_module, name, fake)
+    monkeypatch.setattr(scan_run, name, fake)
 
 
 @pytest.mark.parametrize("workers", [1, 2])
@@ -286,13 +289,13 @@ def test_scene_that_raises_is_recorded_and_the_scan_goes_on(monkeypatch, workers
 def test_failed_message_never_starts_with_ok(monkeypatch):
     # solve_contact succeeds with a note ("ok; ...", as when it cannot check separated
     # tensions against the pull-off stress), then the scene's pull-off fails
-    real_solve = scan_module.solve_contact
+    real_solve = scan_run.solve_contact
 
     def noted(surface, *args, **kwargs):
         r = real_solve(surface, *args, **kwargs)
         return dataclasses.replace(r, message=r.message + "; a note")
 
-    monkeypatch.setattr(scan_module, "solve_contact", noted)
+    monkeypatch.setattr(scan_run, "solve_contact", noted)
     _fail_at(monkeypatch, "_pull_off", (0.7,),
              RuntimeError("pull_off: the contact branch could not be followed"))
     with warnings.catch_warnings(record=True) as record:
@@ -337,7 +340,7 @@ def test_unconverged_pull_off_is_flagged_and_kept(monkeypatch):
         info = {"converged": False, "error_estimate": 2.5e3}
         return (1.5e5, info) if kwargs.get("full_output") else 1.5e5
 
-    monkeypatch.setattr(scan_module, "_pull_off", unconverged)
+    monkeypatch.setattr(scan_run, "_pull_off", unconverged)
     with warnings.catch_warnings(record=True) as record:
         warnings.simplefilter("always")
         ds = scan(SEED, {"e_star": [1e9, 2e9]}, [1e6], pull_off=True, progress=False)
