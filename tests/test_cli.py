@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import cli
+from persson_fast import cli, cli_output
 
 #: a self-affine scene that is sticky but not in full contact: pull-off about 0.1 MPa
 SCENE = ["--surface", "self-affine", "--hurst", "0.8", "--q0", "1e5", "--q1", "1e9",
@@ -319,7 +319,8 @@ def default_sigint():
 
 @pytest.fixture
 def interrupted_csv(monkeypatch):
-    monkeypatch.setattr(cli, "csv", types.SimpleNamespace(writer=_InterruptedWriter))
+    # the CSV tables are written in cli_output, which looks up csv.writer there
+    monkeypatch.setattr(cli_output, "csv", types.SimpleNamespace(writer=_InterruptedWriter))
 
 
 def test_figure2_interrupt_while_writing_csv_keeps_the_old_pair(old_figure2, interrupted_csv):

@@ -18,7 +18,8 @@ from persson_fast.surfaces import (SURFACE_MODELS, Parameter, SurfaceModel, band
 #: the module (``pf.scan`` is the function)
 scan_module = importlib.import_module("persson_fast.scan")
 #: the command line and scan, with the modules their code lives in
-ENTRY_MODULES = ("persson_fast.cli", "persson_fast.scan", "persson_fast.scan_grid",
+ENTRY_MODULES = ("persson_fast.cli", "persson_fast.cli_parser", "persson_fast.cli_config",
+                 "persson_fast.cli_output", "persson_fast.scan", "persson_fast.scan_grid",
                  "persson_fast.scan_run", "persson_fast.scan_results")
 
 # --------------------------------------------------------------------------------------------
