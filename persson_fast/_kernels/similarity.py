@@ -203,13 +203,36 @@ def _interp_cubic(p, h, x):
 
 @njit_serial
 def _moments(p, h):
-    """Discrete area h*sum(p) and first moment h*sum(xi p) (p_0 = p_N = 0)."""
-    a = 0.0
-    m = 0.0
-    for j in range(1, p.shape[0] - 1):
-        a += p[j]
-        m += j * h * p[j]
-    return a * h, m * h
+    """Discrete area h*sum(p) and first moment h*sum(xi p) (p_0 = p_N = 0).
+
+    Four partial sums each: a single running sum is a chain of dependent additions, and the
+    moments are taken at every schedule point of every run.
+    """
+    n = p.shape[0] - 1
+    a0 = 0.0
+    a1 = 0.0
+    a2 = 0.0
+    a3 = 0.0
+    m0 = 0.0
+    m1 = 0.0
+    m2 = 0.0
+    m3 = 0.0
+    j = 1
+    while j + 3 < n:
+        a0 += p[j]
+        a1 += p[j + 1]
+        a2 += p[j + 2]
+        a3 += p[j + 3]
+        m0 += j * p[j]
+        m1 += (j + 1) * p[j + 1]
+        m2 += (j + 2) * p[j + 2]
+        m3 += (j + 3) * p[j + 3]
+        j += 4
+    while j < n:
+        a0 += p[j]
+        m0 += j * p[j]
+        j += 1
+    return ((a0 + a1) + (a2 + a3)) * h, ((m0 + m1) + (m2 + m3)) * (h * h)
 
 
 @njit_serial
@@ -475,7 +498,7 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                         theta = theta_main
                     counts[1] += n_sub
                     counts[2] += n_sub * (n - 1)
-                    rho = ratio ** (1.0 / n_sub)
+                    rho = ratio if n_sub == 1 else math.sqrt(ratio)
                     for sub in range(n_sub):
                         if step == m - 1 and sub == n_sub - 1:
                             g_b = g_stop
