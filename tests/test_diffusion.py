@@ -217,6 +217,20 @@ def test_thomas_continuants_stay_in_range(scale):
     assert np.max(np.abs(x - ref.thomas(lo, di, up, rhs))) < TWIN * np.max(np.abs(x)) * n
 
 
+@pytest.mark.parametrize("n_nodes", [3, 4, 5, 6, 7, 61, 62])
+@pytest.mark.parametrize("theta", [0.5, 1.0])
+def test_theta_step_any_size(n_nodes, theta):
+    """The twisted solve meets in the middle row: odd and even interior counts, down to one."""
+    h = 0.3
+    xi = np.arange(n_nodes) * h
+    p = (xi + 0.1) * np.exp(-(xi - 0.4) ** 2)
+    p[0] = p[-1] = 0.0
+    expected = ref.theta_step(p, h, -0.5, 1.02, 0.07, theta)
+    got = p.copy()
+    theta_step(got, h, -0.5, 1.02, 0.07, theta, *[np.empty(n_nodes) for _ in range(8)])
+    assert np.max(np.abs(got - expected)) < TWIN * 100
+
+
 def test_theta_step_large_steps_many_nodes():
     """A theta step whose pivots (~dt/h^2 = 2e4) overflow a product over 2000 nodes."""
     n_nodes = 2000

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from .._jit import njit_serial
+from .._jit import njit_inline, njit_serial
 
 
 #: the continuants of :func:`thomas` and :func:`theta_step` (products of the pivots) are
@@ -109,6 +109,17 @@ def operator_coefficients(h, drift, diff, n_nodes, lo, di, up):
         up[k] = inv_h2 + c_plus * half_over_h
 
 
+@njit_inline
+def _theta_row(i, lo0, up0, e_d, e, i_, p):
+    """Row i (node i + 1) of the theta step: (sub-diagonal, super-diagonal, right-hand side)
+    of ``(I - i_ L) p_new = (I + e L) p``; the diagonal is the constant 1 - i_ (1 - 2 diff/h^2)."""
+    jf = i + 1.0
+    l_i = lo0 - jf
+    u_i = up0 + jf
+    d = e_d * p[i + 1] + e * (l_i * p[i] + u_i * p[i + 2])
+    return -i_ * l_i, -i_ * u_i, d
+
+
 @njit_serial
 def theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs, scratch):
     """One theta-step ``(I - theta dt L) p_new = (I + (1-theta) dt L) p`` in place.
@@ -118,18 +129,17 @@ def theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs, 
     :func:`operator_coefficients`, whose coefficients are linear in the node index
     (lo_j = lo0 - j, up_j = up0 + j, a constant diagonal), so they are formed in the loop.
 
-    The tridiagonal solve is the Thomas algorithm written with continuants: the pivots are
-    beta_k = th_k / th_(k-1) with th_k = b_k th_(k-1) - a_k c_(k-1) th_(k-2), and the
-    eliminated right-hand side is Y_k / th_k with Y_k = th_(k-1) d_k - a_k Y_(k-1). Both are
-    linear recursions without a division, so the forward sweep's chain of dependent
-    operations is a multiply and a subtract per node instead of two divisions; the back
-    substitution x_k = Y_k / th_k - (c_k th_(k-1) / th_k) x_(k+1) takes the two ratios from
-    the forward sweep, where their division is off the chain. The continuants are kept in
+    The tridiagonal solve is a twisted Thomas algorithm written with continuants (see
+    :func:`thomas`): rows 0 .. k-1 are eliminated downwards and rows m-1 .. k+1 upwards in
+    one loop (two independent chains), row k = m // 2 is solved from both, and the back
+    substitution runs outwards from it, again two chains in one loop. Each elimination keeps
+    the pivots as ratios of continuants, th_i = b th_(i-1) - a_i c_(i-1) th_(i-2) downwards
+    (mirrored upwards), with the right-hand side Y_i = th_(i-1) d_i - a_i Y_(i-1): linear
+    recursions whose one division per row is off the chain. The continuants are kept in
     range by exact powers of two (CONTINUANT_BIG). The matrices here are diagonally dominant
     M-matrices (cell Peclet number <= 2), for which the recursion is as stable as the usual
-    form. Only ``di`` and
-    ``up`` of the workspace are used (for the two ratios); the other arguments are kept for
-    the callers' workspace of :func:`theta_workspace`.
+    form. ``lo``, ``di`` and ``up`` of the workspace hold the eliminated rows; the other
+    arguments are kept for the callers' workspace of :func:`theta_workspace`.
     """
     m = p.shape[0] - 2
     inv_h2 = diff / (h * h)
@@ -141,39 +151,73 @@ def theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs, 
     i_ = theta * dt
     b = 1.0 - i_ * d_l
     e_d = 1.0 + e * d_l
-    th_2 = 0.0
-    th_1 = 1.0
+    k = m // 2
+    n_bot = m - 1 - k               # k or k - 1 rows below the middle row
+    # downwards: rows 0 .. k-1 -> x_i = di_i - up_i x_(i+1); upwards: rows m-1 .. k+1 ->
+    # x_i = di_i - lo_i x_(i-1)
+    t_2 = 0.0
+    t_1 = 1.0
     y_1 = 0.0
     c_1 = 0.0
-    p_l = p[0]
-    p_c = p[1]
-    for k in range(m):
-        jf = k + 1.0
-        l_k = lo0 - jf
-        u_k = up0 + jf
-        p_r = p[k + 2]
-        d = e_d * p_c + e * (l_k * p_l + u_k * p_r)
-        a = -i_ * l_k
-        c = -i_ * u_k
-        t = b * th_1 - (a * c_1) * th_2
-        y = th_1 * d - a * y_1
-        cq = c * th_1
+    s_2 = 0.0
+    s_1 = 1.0
+    z_1 = 0.0
+    a_1 = 0.0
+    for i in range(k):
+        a, c, d = _theta_row(i, lo0, up0, e_d, e, i_, p)
+        t = b * t_1 - (a * c_1) * t_2
+        y = t_1 * d - a * y_1
+        q = c * t_1
         if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
             f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
             t *= f
-            th_1 *= f
+            t_1 *= f
             y *= f
-            cq *= f
+            q *= f
         r = 1.0 / t
-        di[k] = y * r
-        up[k] = cq * r
-        th_2 = th_1
-        th_1 = t
+        di[i] = y * r
+        up[i] = q * r
+        t_2 = t_1
+        t_1 = t
         y_1 = y
         c_1 = c
-        p_l = p_c
-        p_c = p_r
-    x = 0.0
-    for k in range(m - 1, -1, -1):
-        x = di[k] - up[k] * x
-        p[k + 1] = x
+        if i < n_bot:
+            j = m - 1 - i
+            a, c, d = _theta_row(j, lo0, up0, e_d, e, i_, p)
+            t = b * s_1 - (c * a_1) * s_2
+            y = s_1 * d - c * z_1
+            q = a * s_1
+            if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
+                f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
+                t *= f
+                s_1 *= f
+                y *= f
+                q *= f
+            r = 1.0 / t
+            di[j] = y * r
+            lo[j] = q * r
+            s_2 = s_1
+            s_1 = t
+            z_1 = y
+            a_1 = a
+    a, c, d = _theta_row(k, lo0, up0, e_d, e, i_, p)
+    num = d
+    den = b
+    if k > 0:
+        num -= a * di[k - 1]
+        den -= a * up[k - 1]
+    if n_bot > 0:
+        num -= c * di[k + 1]
+        den -= c * lo[k + 1]
+    x_k = num / den
+    p[k + 1] = x_k
+    x_u = x_k
+    x_d = x_k
+    for s in range(1, k + 1):
+        i = k - s
+        x_u = di[i] - up[i] * x_u
+        p[i + 1] = x_u
+        if s <= n_bot:
+            j = k + s
+            x_d = di[j] - lo[j] * x_d
+            p[j + 1] = x_d
