@@ -34,7 +34,8 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
-from .similarity import SMOOTH_WALL, fill_state, solve_variant
+from .schedule import fill_state
+from .similarity import SMOOTH_WALL, solve_variant
 from .strip import N_DAMP as STRIP_N_DAMP
 from .strip import solve_strip
 from .theories import correction_factor

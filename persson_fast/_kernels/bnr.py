@@ -118,7 +118,7 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
-from .similarity import fill_state
+from .schedule import fill_state
 
 # --- constants of the scheme (dimensionless, y0 = 1, t = 2 G / y0^2) -----------------------
 ALPHA = 0.3           # weight of the onset term of phi (onset length 2 ALPHA sqrt(L_START))

@@ -109,7 +109,8 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
-from .similarity import boundary_at, fill_state, wall_far_limit
+from .schedule import (REPEAT_TESTED, boundary_at, exact_start, fill_state, scaled_times,
+                       scaled_values)
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf
 from .tridiag import theta_workspace, thomas
 
@@ -544,59 +545,16 @@ def solve_fixedgrid_detail(G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
         return st.OK
     sa0_phys = sa[0]
     y0 = sigma0 + sa0_phys
-    # scaled schedule with a leading point at G = 0
-    G_k = np.empty(nt + 1)
-    sa_k = np.empty(nt + 1)
-    G_k[0] = 0.0
-    sa_k[0] = sa0_phys / y0
-    for k in range(nt):
-        G_k[k + 1] = G[k] / (y0 * y0)
-        sa_k[k + 1] = sa[k] / y0
+    G_k = scaled_times(G, y0)
+    sa_k = scaled_values(sa, sa0_phys, y0)
     sa0 = sa_k[0]
     sig0 = sigma0 / y0
-    # the first linear piece of sigma_a (collinear points merged): exact start family
-    i_piece = 1
-    while i_piece <= nt and G_k[i_piece] == 0.0:
-        i_piece += 1
-    piece_end = 0.0
-    b_lin = 0.0
-    if i_piece <= nt:
-        piece_end = G_k[i_piece]
-        b_lin = (sa_k[i_piece] - sa0) / piece_end
-        k = i_piece + 1
-        while k <= nt and G_k[k] >= G_k[k - 1]:
-            pred = sa0 + b_lin * G_k[k]
-            if abs(sa_k[k] - pred) > 1e-13 * (1.0 + abs(pred)):
-                break
-            piece_end = G_k[k]
-            k += 1
-    g_end = G_k[nt]
-    g_lin = min(C_START, piece_end)
-    g_free = wall_far_limit(G_k, sa_k, sa0, g_end) if g_end > 0.0 else 0.0
-    start_linear = g_lin >= g_free
-    g_start = g_lin if start_linear else g_free
-    # schedule points up to the start: exact
-    i_first = 1
-    while i_first <= nt and G_k[i_first] <= g_start:
-        g = G_k[i_first]
-        s_here = sa_k[i_first]
-        if g == 0.0:
-            a = 1.0
-            m1 = 1.0
-        elif start_linear:
-            a, m1 = linear_wall_area_moment(1.0, b_lin, g)
-        else:
-            a = 1.0
-            m1 = 1.0 + s_here - sa0
-        ld = (m1 - s_here * a) * y0
-        out_area[i_first - 1] = a
-        out_load[i_first - 1] = ld
-        out_det_area[i_first - 1] = 1.0 - a
-        out_det_load[i_first - 1] = ld - sigma0
-        out_error[i_first - 1] = 0.0
-        out_flux_det[i_first - 1] = 1.0 - a
-        out_flux_det_load[i_first - 1] = ld - sigma0
-        i_first += 1
+    # the start (first linear piece of sigma_a with collinear points merged, repeated G
+    # tested like the others: no jumps here; the free start sought up to the end) and the
+    # schedule points up to it: exact
+    b_lin, start_linear, g_start, i_first = exact_start(
+        G_k, sa_k, sa0, sig0, y0, sigma0, REPEAT_TESTED, C_START, G_k[nt], False, out_area,
+        out_load, out_det_area, out_det_load, out_error, out_flux_det, out_flux_det_load)
     if i_first > nt:
         return st.OK
     if start_linear:

@@ -47,13 +47,14 @@ import numpy as np
 
 from .._jit import njit_inline, njit_serial
 from . import status as st
+from .schedule import (REPEAT_ENDS, boundary_at, exact_start, fill_state, scaled_times,
+                       scaled_values)
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf, ndtr
 from .tridiag import fitted_diffusion, theta_step, theta_workspace
 
 # --- constants of the scheme (dimensionless, y0 = 1) ------------------------------------
 C_START = 0.25        # latest start G_s = C_START * y0^2: start std = 0.71 y0
 K_ALWAYS_FAR = 8.0    # whole schedule wall-free when the wall stays 8 widths away (< 1e-13)
-K_WALL_FAR = 7.0      # a free Gaussian is exact while the wall stays 7 std away (2 Phi(-7) = 3e-12)
 K_DOMAIN = 6.5        # far end of the grid beyond the farthest profile centre, in xi units
 H_BASE = 0.06         # coarse node spacing in xi at rtol = 1e-6
 NPER_BASE = 5.0       # coarse steps per unit of ln G at rtol = 1e-6 (11.5 per decade)
@@ -88,62 +89,6 @@ GAUSS3_W = (5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0)
 
 
 @njit_serial
-def boundary_at(G_k, sa_k, g):
-    """sigma_a at diffusion time g: linear between schedule points, constant outside.
-
-    At a flat stretch (repeated G) the value after the jump is returned.
-    """
-    n = G_k.shape[0]
-    if g <= G_k[0]:
-        return sa_k[0]
-    if g >= G_k[n - 1]:
-        return sa_k[n - 1]
-    lo = 0
-    hi = n - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if G_k[mid] <= g:
-            lo = mid
-        else:
-            hi = mid
-    # G_k[lo] <= g < G_k[hi]; skip to the last of equal G values
-    return sa_k[lo] + (sa_k[hi] - sa_k[lo]) * (g - G_k[lo]) / (G_k[hi] - G_k[lo])
-
-
-@njit_serial
-def _running_min_wall_distance(G_k, sa_k, sa0, g):
-    """min over G' <= g of y_c(G') = 1 + sigma_a(G') - sigma_a(0) (scaled units)."""
-    m = 1.0
-    n = G_k.shape[0]
-    for k in range(n):
-        if G_k[k] > g:
-            break
-        yc = 1.0 + sa_k[k] - sa0
-        if yc < m:
-            m = yc
-    yc = 1.0 + boundary_at(G_k, sa_k, g) - sa0
-    if yc < m:
-        m = yc
-    return m
-
-
-@njit_serial
-def wall_far_limit(G_k, sa_k, sa0, g_hi):
-    """Largest G <= g_hi over which the wall stays K_WALL_FAR std from the free Gaussian."""
-    lo = 0.0
-    hi = g_hi
-    if _running_min_wall_distance(G_k, sa_k, sa0, hi) >= K_WALL_FAR * math.sqrt(2.0 * hi):
-        return hi
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if _running_min_wall_distance(G_k, sa_k, sa0, mid) >= K_WALL_FAR * math.sqrt(2.0 * mid):
-            lo = mid
-        else:
-            hi = mid
-    return lo
-
-
-@njit_serial
 def _wall_always_far(G_k, sa_k, sa0, k_far):
     """True when the wall stays k_far free-profile widths from the start at every G.
 
@@ -165,18 +110,6 @@ def _wall_always_far(G_k, sa_k, sa0, k_far):
                     if yc < k_far * math.sqrt(2.0 * g_star):
                         return False
     return True
-
-
-@njit_serial
-def fill_state(k_from, k_to, area, load, det_area, det_load, err, out_area, out_load,
-               out_det_area, out_det_load, out_error):
-    """Write one state (area, load, detached area and load, error) into outputs k_from .. k_to - 1."""
-    for k in range(k_from, k_to):
-        out_area[k] = area
-        out_load[k] = load
-        out_det_area[k] = det_area
-        out_det_load[k] = det_load
-        out_error[k] = err
 
 
 @njit_serial
@@ -890,14 +823,8 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
                     out_det_load, out_error)
         return st.OK
     y0 = sigma0 + sa0
-    # scaled schedule with a leading point at G = 0
-    G_k = np.empty(nt + 1)
-    sa_k = np.empty(nt + 1)
-    G_k[0] = 0.0
-    sa_k[0] = sa0 / y0
-    for k in range(nt):
-        G_k[k + 1] = G[k] / (y0 * y0)
-        sa_k[k + 1] = sa[k] / y0
+    G_k = scaled_times(G, y0)
+    sa_k = scaled_values(sa, sa0, y0)
     sa0s = sa0 / y0
     sig0s = sigma0 / y0
     # the wall never comes near the distribution: the free solution is exact (A = 1)
@@ -905,48 +832,12 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
         fill_state(np.int64(0), nt, 1.0, sigma0, 0.0, 0.0, 0.0, out_area, out_load, out_det_area,
                     out_det_load, out_error)
         return st.OK
-    # first linear piece after G = 0
-    i_piece = 1
-    while i_piece <= nt and G_k[i_piece] == 0.0:
-        i_piece += 1
-    if i_piece <= nt:
-        piece_end = G_k[i_piece]
-        b_lin = (sa_k[i_piece] - sa0s) / piece_end
-        # extend over collinear pieces: the exact solution holds while the wall stays linear
-        k = i_piece + 1
-        while k <= nt and G_k[k] > G_k[k - 1]:
-            pred = sa0s + b_lin * G_k[k]
-            if abs(sa_k[k] - pred) > 1e-13 * (1.0 + abs(pred)):
-                break
-            piece_end = G_k[k]
-            k += 1
-    else:
-        piece_end = 0.0
-        b_lin = 0.0
-    g_s1 = min(C_START, piece_end)
-    g_s2 = wall_far_limit(G_k, sa_k, sa0s, C_START)
-    start_linear = g_s1 >= g_s2
-    g_start = g_s1 if start_linear else g_s2
-    # outputs up to the start come from the exact start family
-    i_first = 1
-    while i_first <= nt and G_k[i_first] <= g_start:
-        g = G_k[i_first]
-        if g == 0.0:
-            a = 1.0
-            m1 = 1.0
-        elif start_linear:
-            a, m1 = linear_wall_area_moment(1.0, b_lin, g)
-        else:
-            a = 1.0
-            m1 = 1.0 + sa_k[i_first] - sa0s
-        s_here = sa_k[i_first]
-        ld = m1 - s_here * a
-        out_area[i_first - 1] = a
-        out_load[i_first - 1] = ld * y0
-        out_det_area[i_first - 1] = 1.0 - a
-        out_det_load[i_first - 1] = (ld - sig0s) * y0
-        out_error[i_first - 1] = 0.0
-        i_first += 1
+    # the start (a repeated G ends the first linear piece: the wall may jump there) and the
+    # outputs up to it from the exact start family
+    no_flux = np.empty(0)
+    b_lin, start_linear, g_start, i_first = exact_start(
+        G_k, sa_k, sa0s, sig0s, y0, sigma0, REPEAT_ENDS, C_START, C_START, True, out_area,
+        out_load, out_det_area, out_det_load, out_error, no_flux, no_flux)
     if i_first > nt:
         return st.OK
     if g_start <= 0.0:

@@ -57,6 +57,7 @@ import numpy as np
 
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
+from .schedule import REPEAT_SKIPPED, first_linear_piece, scaled_times, scaled_values
 from .special import linear_wall_area_moment, linear_wall_density
 from .tridiag import thomas
 
@@ -150,29 +151,6 @@ def _far_limit(G_k, dist_k, g_hi):
         else:
             hi = mid
     return lo
-
-
-@njit_serial
-def _linear_end(G_k, v_k):
-    """End of the first linear stretch of a wall from G = 0 (collinear pieces joined), and
-    its slope."""
-    n = G_k.shape[0]
-    k = 1
-    while k < n and G_k[k] <= G_k[0]:
-        k += 1
-    if k >= n:
-        return np.inf, 0.0
-    b = (v_k[k] - v_k[0]) / (G_k[k] - G_k[0])
-    end = G_k[k]
-    k += 1
-    while k < n:
-        if G_k[k] > G_k[k - 1]:
-            pred = v_k[0] + b * G_k[k]
-            if abs(v_k[k] - pred) > 1e-13 * (1.0 + abs(pred)):
-                return end, b
-            end = G_k[k]
-        k += 1
-    return np.inf, b
 
 
 @njit_serial
@@ -528,16 +506,9 @@ def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl
             return st.BAD_INPUT
     # scaled schedule with a leading point at G = 0
     n_k = nt + 1
-    G_k = np.empty(n_k)
-    sa_k = np.empty(n_k)
-    sy_k = np.empty(n_k)
-    G_k[0] = 0.0
-    sa_k[0] = sa[0] / scale
-    sy_k[0] = sy[0] / scale
-    for k in range(nt):
-        G_k[k + 1] = G[k] / (scale * scale)
-        sa_k[k + 1] = sa[k] / scale
-        sy_k[k + 1] = sy[k] / scale
+    G_k = scaled_times(G, scale)
+    sa_k = scaled_values(sa, sa[0], scale)
+    sy_k = scaled_values(sy, sy[0], scale)
     sig0 = sigma0 / scale
     g_end = G_k[nt]
     speed_k = np.zeros(n_k)
@@ -555,11 +526,11 @@ def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl
     g_free = min(g_far_lo, g_far_up)
     near_lower = d_lo[0] <= d_up[0]
     if near_lower:
-        end_lin, b_lin = _linear_end(G_k, sa_k)
+        end_lin, b_lin = first_linear_piece(G_k, sa_k, REPEAT_SKIPPED, True)
         g_lin = min(end_lin, g_far_up)
         y0 = d_lo[0]
     else:
-        end_lin, b_lin = _linear_end(G_k, sy_k)
+        end_lin, b_lin = first_linear_piece(G_k, sy_k, REPEAT_SKIPPED, True)
         g_lin = min(end_lin, g_far_lo)
         y0 = d_up[0]
     if g_free >= g_lin:
