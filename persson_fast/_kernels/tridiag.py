@@ -23,6 +23,27 @@ def theta_workspace(n):
             np.empty(n), np.empty(n))
 
 
+@njit_inline
+def _continuant_row(b, a, c, d, t_1, t_2, y_1, c_1):
+    """One row ``a x_(i-1) + b x_i + c x_(i+1) = d`` of the continuant elimination (see
+    :func:`thomas`), given the previous row's super-diagonal ``c_1`` and the continuants
+    ``t_1``, ``t_2`` (rows i-1, i-2) and ``y_1``. Returns (t, t_1, y, d', c'): the row's
+    continuants (``t_1`` rescaled with them by a power of two when they leave
+    [CONTINUANT_SMALL, CONTINUANT_BIG]) and the eliminated row x_i = d' - c' x_(i+1),
+    d' = y / t, c' = c t_1 / t."""
+    t = b * t_1 - (a * c_1) * t_2
+    y = t_1 * d - a * y_1
+    q = c * t_1
+    if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
+        f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
+        t *= f
+        t_1 *= f
+        y *= f
+        q *= f
+    r = 1.0 / t
+    return t, t_1, y, y * r, q * r
+
+
 @njit_serial
 def thomas(lower, diag, upper, rhs, scratch, out):
     """Solve a tridiagonal system without pivoting (Thomas algorithm, with continuants).
@@ -53,22 +74,11 @@ def thomas(lower, diag, upper, rhs, scratch, out):
     u_1 = 0.0
     for i in range(n):
         l_i = lower[i] if i > 0 else 0.0
-        t = diag[i] * th_1 - (l_i * u_1) * th_2
-        y = th_1 * rhs[i] - l_i * y_1
-        cq = upper[i] * th_1 if i < n - 1 else 0.0
-        if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
-            f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
-            t *= f
-            th_1 *= f
-            y *= f
-            cq *= f
-        r = 1.0 / t
-        out[i] = y * r
-        scratch[i] = cq * r
-        th_2 = th_1
+        u_i = upper[i] if i < n - 1 else 0.0
+        t, th_2, y_1, out[i], scratch[i] = _continuant_row(diag[i], l_i, u_i, rhs[i], th_1,
+                                                           th_2, y_1, u_1)
         th_1 = t
-        y_1 = y
-        u_1 = upper[i] if i < n - 1 else 0.0
+        u_1 = u_i
     for i in range(n - 2, -1, -1):
         out[i] -= scratch[i] * out[i + 1]
 
@@ -165,40 +175,14 @@ def theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs, 
     a_1 = 0.0
     for i in range(k):
         a, c, d = _theta_row(i, lo0, up0, e_d, e, i_, p)
-        t = b * t_1 - (a * c_1) * t_2
-        y = t_1 * d - a * y_1
-        q = c * t_1
-        if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
-            f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
-            t *= f
-            t_1 *= f
-            y *= f
-            q *= f
-        r = 1.0 / t
-        di[i] = y * r
-        up[i] = q * r
-        t_2 = t_1
+        t, t_2, y_1, di[i], up[i] = _continuant_row(b, a, c, d, t_1, t_2, y_1, c_1)
         t_1 = t
-        y_1 = y
         c_1 = c
         if i < n_bot:
             j = m - 1 - i
             a, c, d = _theta_row(j, lo0, up0, e_d, e, i_, p)
-            t = b * s_1 - (c * a_1) * s_2
-            y = s_1 * d - c * z_1
-            q = a * s_1
-            if not CONTINUANT_SMALL <= abs(t) <= CONTINUANT_BIG:
-                f = CONTINUANT_SMALL if abs(t) > CONTINUANT_BIG else CONTINUANT_BIG
-                t *= f
-                s_1 *= f
-                y *= f
-                q *= f
-            r = 1.0 / t
-            di[j] = y * r
-            lo[j] = q * r
-            s_2 = s_1
+            t, s_2, z_1, di[j], lo[j] = _continuant_row(b, c, a, d, s_1, s_2, z_1, a_1)
             s_1 = t
-            z_1 = y
             a_1 = a
     a, c, d = _theta_row(k, lo0, up0, e_d, e, i_, p)
     num = d
