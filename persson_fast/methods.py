@@ -8,9 +8,19 @@ Every entry says:
   axis, the wall off-grid) or ``"integral"`` (the Volterra equation, no stress grid);
 * ``sweep`` (compiled methods) -- where its kernels are: (module, base name of the serial
   and ``prange`` sweeps ``<base>_serial`` / ``<base>_parallel``, the name of the grid
-  variant constant in :mod:`persson_fast._kernels.similarity` or None, whether the sweep
-  takes ``n_damp``); :func:`sweep_kernels` reads it, so a new method is its kernel file and
-  one entry here;
+  variant constant in :mod:`persson_fast._kernels.similarity` or None); :func:`sweep_kernels`
+  reads it. Every sweep has the one signature of
+  :mod:`persson_fast._kernels.signature`, ``(lead..., G, sa_rows, sy_rows, pressures, rtol,
+  level, n_damp, area, load, det_area, det_load, error, pl_area, pl_load, status, counts)``,
+  ``lead`` the variant where the entry names one, else nothing: the lower wall -sigma_a and
+  the upper wall sigma_Y per row, rows of length 0 (or +inf throughout) meaning "no upper
+  wall" and, for ``pl_area``/``pl_load``, "not requested"; a one-wall sweep answers a finite
+  upper wall with status BAD_INPUT. :func:`persson_fast.sweep.run_sweep` drives every entry
+  the same way, so a new grid method is its kernel file and one entry here;
+* ``scene_scale`` (default True) -- the sweep layer divides the stresses by a scene scale
+  (G by its square) before the kernel and multiplies the loads back; False for a kernel that
+  takes stresses as given and scales them itself ("strip": by the width of the strip at
+  G = 0);
 * ``controls_error`` (default True) -- False for a method whose kernel does not refine until
   its estimate meets rtol: the sweep layer then flags (status 15) a result whose estimate
   exceeds rtol at a returned G;
@@ -50,17 +60,17 @@ METHODS = {
             "jumps, Richardson-extrapolated (h, dt) -> (h/2, dt/2)"
         ),
         "family": "grid", "order": 4, "adhesion": True, "jumps": True, "nonlinear": True,
-        "sweep": ("persson_fast._kernels.sweep", "sweep", "CN", True),
+        "sweep": ("persson_fast._kernels.sweep", "sweep", "CN"),
     },
     "cn-plain": {
         "description": "Crank-Nicolson on the front-fixed similarity grid, no extrapolation",
         "family": "grid", "order": 2, "adhesion": True, "jumps": True, "nonlinear": True,
-        "sweep": ("persson_fast._kernels.sweep", "sweep", "CN_PLAIN", True),
+        "sweep": ("persson_fast._kernels.sweep", "sweep", "CN_PLAIN"),
     },
     "implicit-euler": {
         "description": "implicit Euler on the front-fixed similarity grid (first order in the step)",
         "family": "grid", "order": 1, "adhesion": True, "jumps": True, "nonlinear": True,
-        "sweep": ("persson_fast._kernels.sweep", "sweep", "IMPLICIT_EULER", True),
+        "sweep": ("persson_fast._kernels.sweep", "sweep", "IMPLICIT_EULER"),
     },
     "fixed-grid": {
         "description": (
@@ -69,7 +79,7 @@ METHODS = {
         ),
         "family": "fixed-grid", "order": 2, "adhesion": False, "jumps": False,
         "nonlinear": True,
-        "sweep": ("persson_fast._kernels.fixedgrid", "fixedgrid_sweep", None, True),
+        "sweep": ("persson_fast._kernels.fixedgrid", "fixedgrid_sweep", None),
         "controls_error": False,
     },
     "bnr": {
@@ -80,7 +90,7 @@ METHODS = {
         ),
         "family": "integral", "order": 4, "adhesion": False, "jumps": False,
         "nonlinear": True,
-        "sweep": ("persson_fast._kernels.bnr", "bnr_sweep", None, False),
+        "sweep": ("persson_fast._kernels.bnr", "bnr_sweep", None),
     },
     "strip": {
         "description": (
@@ -89,8 +99,8 @@ METHODS = {
             "refinement; only with a yield wall (sigma_y, hardness)"
         ),
         "family": "two-wall", "order": 4, "adhesion": False, "jumps": False, "nonlinear": True,
-        "two_walls": True,
-        "sweep": ("persson_fast._kernels.strip", "sweep", None, True),
+        "two_walls": True, "scene_scale": False,
+        "sweep": ("persson_fast._kernels.strip", "sweep", None),
     },
     "auto": {
         "description": "the cheapest method that meets rtol for the scene (see AUTO_POLICY)",
@@ -111,22 +121,24 @@ AUTO_POLICY = {
 
 
 def sweep_kernels(method: str):
-    """(serial, parallel, leading arguments, takes n_damp) of a compiled method's sweep.
+    """(serial, parallel, leading arguments) of a compiled method's sweep.
 
     Read from the method's ``sweep`` entry (module, kernel base name -- the serial and the
-    ``prange`` driver are ``<base>_serial`` and ``<base>_parallel`` --, the name of the grid
-    variant constant in :mod:`persson_fast._kernels.similarity` or None, and whether the
-    sweep takes ``n_damp``); the kernel module is imported on first use.
+    ``prange`` driver are ``<base>_serial`` and ``<base>_parallel`` --, and the name of the
+    grid variant constant in :mod:`persson_fast._kernels.similarity` or None); the kernel
+    module is imported on first use. The leading arguments are ``(variant,)`` where the entry
+    names a variant, else empty; the rest of the signature is the one of
+    :mod:`persson_fast._kernels.signature`.
     """
     import importlib
 
     entry = METHODS[method].get("sweep")
     if entry is None:
         raise ValueError(f"method {method!r} has no compiled sweep")
-    module, base, variant, damped = entry
+    module, base, variant = entry
     mod = importlib.import_module(module)
     lead = (variant_of(method),) if variant is not None else ()
-    return getattr(mod, base + "_serial"), getattr(mod, base + "_parallel"), lead, damped
+    return getattr(mod, base + "_serial"), getattr(mod, base + "_parallel"), lead
 
 
 def variant_of(method: str) -> int:

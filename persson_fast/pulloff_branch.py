@@ -124,6 +124,8 @@ class _Branch:
         self._kernel = sweep_serial
         n = self.zeta.size
         self._out = [np.zeros((1, n)) for _ in range(5)]
+        # no upper wall, no plastic outputs: rows of length 0 (persson_fast._kernels.signature)
+        self._absent = np.zeros((1, 0))
         self._status = np.zeros(1, dtype=np.int64)
         self._counts = np.zeros((1, 3), dtype=np.int64)
         self.solves = 0
@@ -145,8 +147,9 @@ class _Branch:
     def evaluate(self, x, sigma0, rtol):
         """F(x): diffuse against the wall x at nominal stress sigma0 (scaled), then Eqs. 8-9."""
         area, load, det_a, det_l, err = self._out
-        self._kernel(self.variant, self.G, x[None, :], np.array([sigma0]), float(rtol), -1,
-                     self.n_damp, area, load, det_a, det_l, err, self._status, self._counts)
+        self._kernel(self.variant, self.G, x[None, :], self._absent, np.array([sigma0]),
+                     float(rtol), -1, self.n_damp, area, load, det_a, det_l, err, self._absent,
+                     self._absent, self._status, self._counts)
         self.solves += 1
         self.area = area[0].copy()
         self.area_error = err[0].copy()

@@ -8,23 +8,16 @@ Surf. Sci. Rep. 61, 201 (2006)) the distribution P(sigma, G) of the local normal
 
 with absorbing walls at sigma = -sigma_a(G) (detachment) and sigma = sigma_y(G) (yield). This
 module validates the input and runs :mod:`persson_fast._kernels.strip` over the pressures
-through :func:`persson_fast.sweep.run_rows` (serial, thread pool or ``prange``; the threaded
-results are bitwise those of a serial sweep).
+through :func:`persson_fast.sweep.run_sweep`, as every grid method (serial, thread pool or
+``prange``; the threaded results are bitwise those of a serial sweep).
 """
 from __future__ import annotations
 
-import contextlib
-import time
-
 import numpy as np
 
-from ._kernels.strip import sweep_parallel, sweep_serial
-from .sweep import check_parallel, choose_parallel, is_compiled, prange_guard, run_rows
+from .sweep import check_parallel, run_sweep
 
 __all__ = ["solve_two_walls"]
-
-_OUTPUTS = ("elastic_area", "load", "plastic_area", "plastic_load", "detached_area",
-            "detached_load", "error_estimate")
 
 
 def _as_array(x, name, unit, ndim):
@@ -159,32 +152,7 @@ def solve_two_walls(G, pressures, sa_rows, sy_rows, *, rtol, n_damp=1, level=-1,
         raise ValueError(f"pressures must lie strictly between the walls at G = 0: "
                          f"-sa < sigma0 < sy [Pa]; got pressures[{r}] = {p[r]!r} with "
                          f"sa = {sa[r, 0]!r}, sy = {sy[r, 0]!r}")
-    out = {name: np.zeros((n_p, n_t)) for name in _OUTPUTS}
-    status = np.zeros(n_p, dtype=np.int64)
-    counts = np.zeros((n_p, 3), dtype=np.int64)
-    timings = {}
-    mode = choose_parallel(parallel, n_p)
-    kernel = sweep_parallel if mode == "prange" else sweep_serial
-    if not is_compiled(kernel):
-        t0 = time.perf_counter()
-        with prange_guard() if mode == "prange" else contextlib.nullcontext():
-            _warm(kernel)
-        timings["compile"] = time.perf_counter() - t0
-    args = [G, sa, sy, p, rtol, int(level), int(n_damp),
-            *(out[name] for name in _OUTPUTS), status, counts]
-    t0 = time.perf_counter()
-    run_rows(sweep_serial, sweep_parallel, args, (1, 2, 3), tuple(range(7, 16)), n_p,
-             parallel)
-    timings["solve"] = time.perf_counter() - t0
-    out["status"] = status
-    out["counts"] = counts
+    out, timings = run_sweep(G, sa, p, sy_rows=sy, rtol=rtol, method="strip", level=int(level),
+                             n_damp=int(n_damp), parallel=parallel)
+    out["elastic_area"] = out.pop("area")
     return out, timings
-
-
-def _warm(kernel):
-    G = np.array([0.0, 1.0])
-    sa = np.zeros((1, 2))
-    sy = np.ones((1, 2))
-    outs = [np.zeros((1, 2)) for _ in _OUTPUTS]
-    kernel(G, sa, sy, np.array([0.5]), 1e-3, -1, 1, *outs, np.zeros(1, dtype=np.int64),
-           np.zeros((1, 3), dtype=np.int64))

@@ -11,7 +11,6 @@ import time
 
 import numpy as np
 
-from ._kernels.sweep import sweep_parallel, sweep_serial
 from ._kernels.status import RTOL_NOT_MET
 from .methods import METHODS, sweep_kernels
 
@@ -211,55 +210,71 @@ def is_compiled(func) -> bool:
     return len(getattr(func, "signatures", ())) > 0
 
 
-def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, parallel=None):
+#: the outputs of every grid sweep, in the order of the kernel signature
+#: (:mod:`persson_fast._kernels.signature`): the one-wall ones, then the plastic pair
+OUTPUTS = ("area", "load", "detached_area", "detached_load", "error_estimate")
+PLASTIC_OUTPUTS = ("plastic_area", "plastic_load")
+
+
+def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, parallel=None,
+              sy_rows=None):
     """Solve the diffusion for every pressure with a compiled method.
 
     Parameters
     ----------
     G : (n_t,) float64 -- diffusion times. [Pa^2]
-    sa_rows : (n_p, n_t) float64 -- wall positions per pressure. [Pa]
+    sa_rows : (n_p, n_t) float64 -- the lower wall (at -sigma_a) per pressure. [Pa]
     pressures : (n_p,) float64 -- nominal pressures. [Pa]
     rtol : float -- target relative accuracy. [-]
     method : str -- a compiled entry of :data:`persson_fast.METHODS`.
     level : int -- >= 0: explicit resolution level (doubles per level), ignoring rtol.
-    n_damp : int -- Rannacher damping steps after wall jumps.
+    n_damp : int -- Rannacher damping steps after wall jumps (for "strip": after the start
+        and each kink).
     parallel : None, bool, "threads" or "prange" -- see :func:`choose_parallel`.
+    sy_rows : (n_p, n_t) float64 or None -- the upper (yield) wall per pressure [Pa]; None:
+        none (the kernel receives rows of length 0, and no plastic outputs are requested).
+        A method without an upper wall answers finite values with status BAD_INPUT.
 
     Returns
     -------
-    dict of arrays (area, load, detached_area, detached_load, error_estimate, status,
-    counts (n_p, 3): nodes, steps, node-steps) and timings (seconds: ``solve``, ``compile``
-    if this call compiled the kernel).
+    dict of arrays (area, load, detached_area, detached_load, error_estimate, with
+    ``sy_rows`` also plastic_area and plastic_load, (n_p, n_t); status (n_p,); counts
+    (n_p, 3): the method's work counters) and timings (seconds: ``solve``, ``compile`` if
+    this call compiled the kernel).
     """
     G = np.ascontiguousarray(G, dtype=np.float64)
     sa_rows = np.ascontiguousarray(sa_rows, dtype=np.float64)
     pressures = np.ascontiguousarray(pressures, dtype=np.float64)
     n_p, n_t = sa_rows.shape
-    scale = _scene_scale(G, sa_rows, pressures)
-    names = ("area", "load", "detached_area", "detached_load", "error_estimate")
+    upper = sy_rows is not None
+    if upper:
+        sy_rows = np.ascontiguousarray(sy_rows, dtype=np.float64)
+    scaled = METHODS[method].get("scene_scale", True)
+    scale = _scene_scale(G, sa_rows, pressures) if scaled else 1.0
+    names = OUTPUTS + (PLASTIC_OUTPUTS if upper else ())
     out = {name: np.zeros((n_p, n_t)) for name in names}
     status = np.zeros(n_p, dtype=np.int64)
     counts = np.zeros((n_p, 3), dtype=np.int64)
-    serial, par_kernel, lead, damped = sweep_kernels(method)
+    serial, par_kernel, lead = sweep_kernels(method)
     timings = {}
     mode = choose_parallel(parallel, n_p)
     kernel = par_kernel if mode == "prange" else serial
     if not is_compiled(kernel):
         t0 = time.perf_counter()
         with prange_guard() if mode == "prange" else contextlib.nullcontext():
-            _warm(kernel, lead, damped)
+            _warm(method, kernel)
         timings["compile"] = time.perf_counter() - t0
-    mid = (float(rtol), int(level)) + ((int(n_damp),) if damped else ())
-    args = [*lead, G / scale**2, sa_rows / scale, pressures / scale, *mid,
-            *(out[name] for name in names), status, counts]
-    first = len(lead)
-    rows_in = (first + 1, first + 2)
-    rows_out = tuple(range(first + 3 + len(mid), len(args)))
+    if scaled:
+        G, sa_rows, pressures = G / scale**2, sa_rows / scale, pressures / scale
+        sy_rows = sy_rows / scale if upper else None
+    args, rows_in, rows_out = _sweep_args(lead, G, sa_rows, sy_rows, pressures, rtol, level,
+                                          n_damp, out, status, counts)
     t0 = time.perf_counter()
     run_rows(serial, par_kernel, args, rows_in, rows_out, n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
-    out["load"] *= scale
-    out["detached_load"] *= scale
+    if scaled:
+        for name in ("load", "detached_load") + (("plastic_load",) if upper else ()):
+            out[name] *= scale
     if level < 0 and not METHODS[method].get("controls_error", True):
         # a method without its own a-posteriori control: a result whose error estimate
         # exceeds rtol at a returned G says so (the contract: within rtol, or flagged)
@@ -271,6 +286,25 @@ def run_sweep(G, sa_rows, pressures, *, rtol, method="cn", level=-1, n_damp=2, p
     return out, timings
 
 
+def _sweep_args(lead, G, sa_rows, sy_rows, pressures, rtol, level, n_damp, out, status,
+                counts):
+    """The positional arguments of a sweep (:mod:`persson_fast._kernels.signature`) and the
+    positions of its per-row inputs and outputs (for :func:`run_rows`).
+
+    ``sy_rows`` None: rows of length 0 for the upper wall and, unless ``out`` holds them, for
+    the plastic outputs (absent, not requested).
+    """
+    n_p = pressures.shape[0]
+    absent = np.zeros((n_p, 0))
+    outs = [out[name] if name in out else absent for name in OUTPUTS + PLASTIC_OUTPUTS]
+    args = [*lead, G, sa_rows, absent if sy_rows is None else sy_rows, pressures, float(rtol),
+            int(level), int(n_damp), *outs, status, counts]
+    first = len(lead)
+    rows_in = (first + 1, first + 2, first + 3)
+    rows_out = tuple(range(first + 7, len(args)))
+    return args, rows_in, rows_out
+
+
 def _scene_scale(G, sa_rows, pressures) -> float:
     """A stress scale of the scene [Pa]: sqrt of the largest G, else the largest stress."""
     candidates = [np.sqrt(np.max(G)) if G.size else 0.0,
@@ -280,25 +314,31 @@ def _scene_scale(G, sa_rows, pressures) -> float:
     return float(scale) if scale > 0 and np.isfinite(scale) else 1.0
 
 
-def _warm(kernel, lead=(0,), damped=True) -> None:
-    G = np.array([0.0, 1.0])
-    sa = np.zeros((1, 2))
-    p = np.array([1.0])
-    outs = [np.zeros((1, 2)) for _ in range(5)]
-    mid = (1e-3, -1) + ((2,) if damped else ())
-    kernel(*lead, G, sa, p, *mid, *outs, np.zeros(1, dtype=np.int64),
-           np.zeros((1, 3), dtype=np.int64))
+def _warm(method, kernel) -> None:
+    """Compile (or load from the disk cache) ``kernel``, a sweep of ``method``, by one call on
+    a two-point schedule (with an upper wall for a two-wall method), built by the same
+    :func:`_sweep_args` as every solve, so that it has the solves' types."""
+    _, _, lead = sweep_kernels(method)
+    two = bool(METHODS[method].get("two_walls", False))
+    out = {name: np.zeros((1, 2)) for name in OUTPUTS + (PLASTIC_OUTPUTS if two else ())}
+    args, _, _ = _sweep_args(lead, np.array([0.0, 1.0]), np.zeros((1, 2)),
+                             np.ones((1, 2)) if two else None, np.array([0.5]), 1e-3, -1, 2,
+                             out, np.zeros(1, dtype=np.int64), np.zeros((1, 3), dtype=np.int64))
+    kernel(*args)
 
 
-def warm_sweeps(prange: bool = False) -> dict:
-    """Compile (or load from the disk cache) the diffusion sweep kernels; the seconds spent
-    per kernel (``serial``; ``prange`` too when asked). :func:`persson_fast.warmup` adds the
-    adhesive kernels."""
+def warm_sweeps(prange: bool = False, method: str = "cn") -> dict:
+    """Compile (or load from the disk cache) the sweep kernels of ``method`` (default the
+    default method of :func:`persson_fast.solve_diffusion`); the seconds spent per kernel
+    (``serial``; ``prange`` too when asked). :func:`persson_fast.warmup` adds the adhesive
+    kernels."""
     timings = {}
-    for name, kernel in (("serial", sweep_serial), ("prange", sweep_parallel)):
+    serial, parallel, _ = sweep_kernels(method)
+    for name, kernel in (("serial", serial), ("prange", parallel)):
         if name == "prange" and not prange:
             continue
         t0 = time.perf_counter()
-        _warm(kernel)
+        with prange_guard() if name == "prange" else contextlib.nullcontext():
+            _warm(method, kernel)
         timings[name] = time.perf_counter() - t0
     return timings

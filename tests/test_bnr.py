@@ -261,7 +261,8 @@ def test_sweeps_serial_parallel_equal():
         outs = [np.zeros((n_p, n_t)) for _ in range(5)]
         status = np.zeros(n_p, dtype=np.int64)
         counts = np.zeros((n_p, 3), dtype=np.int64)
-        kernel(G, sa_rows, pressures, 1e-5, -1, *outs, status, counts)
+        none = np.zeros((n_p, 0))                       # no upper wall, no plastic outputs
+        kernel(G, sa_rows, none, pressures, 1e-5, -1, 2, *outs, none, none, status, counts)
         return outs, status, counts
 
     s_outs, s_status, s_counts = run(bnr_sweep_serial)

@@ -333,7 +333,8 @@ def test_sweeps_serial_and_parallel_agree():
         arrays = [np.empty((pressures.size, G.size)) for _ in range(5)]
         status = np.empty(pressures.size, dtype=np.int64)
         counts = np.empty((pressures.size, 3), dtype=np.int64)
-        kernel(G, sa_rows, pressures, 1e-4, -1, 2, *arrays, status, counts)
+        none = np.zeros((pressures.size, 0))            # no upper wall, no plastic outputs
+        kernel(G, sa_rows, none, pressures, 1e-4, -1, 2, *arrays, none, none, status, counts)
         outs[name] = (arrays, status, counts)
     for a, b in zip(outs["serial"][0], outs["parallel"][0]):
         assert np.array_equal(a, b)

@@ -150,18 +150,21 @@ def test_registry_carries_the_kernels():
     per-method branch (a new method is its kernel file and one registry entry)."""
     import inspect
 
-    from persson_fast import methods, sweep
+    from persson_fast import methods, strip, sweep
     from persson_fast._kernels import similarity
 
     compiled = [m for m, i in pf.METHODS.items() if i.get("family") not in (None, "closed-form")]
     assert set(compiled) == {"cn", "cn-plain", "implicit-euler", "fixed-grid", "bnr", "strip"}
     for m in compiled:
-        serial, parallel, lead, damped = methods.sweep_kernels(m)
-        assert callable(serial) and callable(parallel) and isinstance(damped, bool)
+        serial, parallel, lead = methods.sweep_kernels(m)
+        assert callable(serial) and callable(parallel)
+        assert lead == ((methods.variant_of(m),) if METHODS[m]["sweep"][2] else ())
     assert [methods.variant_of(m) for m in ("cn", "cn-plain", "implicit-euler")] == [
         similarity.CN, similarity.CN_PLAIN, similarity.IMPLICIT_EULER]
     src = inspect.getsource(sweep)
     assert '"family"' not in src and "fixedgrid" not in src and "bnr" not in src
+    # the two-wall driver builds no kernel arguments of its own: it calls run_sweep
+    assert "from ._kernels" not in inspect.getsource(strip)
     with pytest.raises(ValueError, match="no compiled sweep"):
         methods.sweep_kernels("analytic")
 
@@ -177,3 +180,4 @@ def test_a_new_method_is_one_registry_entry(monkeypatch):
     a = pf.solve_diffusion(G, [1.0, 2.0], 0.1 + 0.05 * np.sqrt(G), method="trial-grid", rtol=1e-5)
     b = pf.solve_diffusion(G, [1.0, 2.0], 0.1 + 0.05 * np.sqrt(G), method="fixed-grid", rtol=1e-5)
     assert a.method == "trial-grid" and np.array_equal(a.area, b.area)
+

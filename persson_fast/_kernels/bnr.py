@@ -1038,15 +1038,28 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
         out_load[k] = sigma0 + out_det_load[k]
     return st.WALL_THINNED
 
-def _bnr_sweep(G, sa_rows, pressures, rtol, level, area, load, det_area, det_load, error,
-               status, counts):
+
+# the sweep of the one signature of every grid method
+from .signature import no_upper_wall  # noqa: E402
+
+
+def _bnr_sweep(G, sa_rows, sy_rows, pressures, rtol, level, n_damp, area, load, det_area,
+               det_load, error, pl_area, pl_load, status, counts):
     """Solve every pressure with :func:`solve_bnr_one`.
 
-    ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); ``status`` (n_p,); ``counts`` (n_p, 3).
+    Arguments as in :mod:`persson_fast._kernels.signature` (no ``variant``; ``n_damp`` is
+    not used: the integral equation has no damped steps): one wall, so ``sy_rows`` must be
+    absent (rows of length 0, or +inf at every G; else BAD_INPUT), ``pl_area``/``pl_load``
+    rows of length 0 (not requested) or n_t (set to zero).
     """
-    for k in prange(pressures.shape[0]):
-        status[k] = solve_bnr_one(G, sa_rows[k], pressures[k], rtol, level, area[k], load[k],
-                                  det_area[k], det_load[k], error[k], counts[k])
+    n_p = pressures.shape[0]
+    n_t = G.shape[0]
+    for k in prange(n_p):
+        if no_upper_wall(sy_rows, pl_area, pl_load, k, n_p, n_t):
+            status[k] = solve_bnr_one(G, sa_rows[k], pressures[k], rtol, level, area[k],
+                                      load[k], det_area[k], det_load[k], error[k], counts[k])
+        else:
+            status[k] = st.BAD_INPUT
 
 
 bnr_sweep_serial, bnr_sweep_parallel = njit_sweeps(_bnr_sweep)

@@ -697,14 +697,27 @@ def solve_fixedgrid_one(G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
                                   out_det_area, out_det_load, out_error, fd, fdl, counts)
 
 
-def _fixedgrid_sweep(G, sa_rows, pressures, rtol, level, n_damp, area, load, det_area, det_load,
-                     error, status, counts):
-    """Solve every pressure. ``sa_rows``: (n_p, n_t); outputs (n_p, n_t); status (n_p,);
-    counts (n_p, 3)."""
-    for k in prange(pressures.shape[0]):
-        status[k] = solve_fixedgrid_one(G, sa_rows[k], pressures[k], rtol, level, n_damp,
-                                        area[k], load[k], det_area[k], det_load[k], error[k],
-                                        counts[k])
+# the sweep of the one signature of every grid method
+from .signature import no_upper_wall  # noqa: E402
+
+
+def _fixedgrid_sweep(G, sa_rows, sy_rows, pressures, rtol, level, n_damp, area, load, det_area,
+                     det_load, error, pl_area, pl_load, status, counts):
+    """Solve every pressure with :func:`solve_fixedgrid_one`.
+
+    Arguments as in :mod:`persson_fast._kernels.signature` (no ``variant``): one wall, so
+    ``sy_rows`` must be absent (rows of length 0, or +inf at every G; else BAD_INPUT),
+    ``pl_area``/``pl_load`` rows of length 0 (not requested) or n_t (set to zero).
+    """
+    n_p = pressures.shape[0]
+    n_t = G.shape[0]
+    for k in prange(n_p):
+        if no_upper_wall(sy_rows, pl_area, pl_load, k, n_p, n_t):
+            status[k] = solve_fixedgrid_one(G, sa_rows[k], pressures[k], rtol, level, n_damp,
+                                            area[k], load[k], det_area[k], det_load[k],
+                                            error[k], counts[k])
+        else:
+            status[k] = st.BAD_INPUT
 
 
 fixedgrid_sweep_serial, fixedgrid_sweep_parallel = njit_sweeps(_fixedgrid_sweep)

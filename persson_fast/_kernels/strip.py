@@ -662,14 +662,25 @@ def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl
     return status
 
 
-def _sweep(G, sa_rows, sy_rows, sigma0, rtol, level, n_damp, el, load, pl, pl_load, det,
-           det_load, err, status, counts):
-    """Solve every pressure (row). Inputs sa_rows, sy_rows (n_p, n_t), sigma0 (n_p,); outputs
-    (n_p, n_t), status (n_p,), counts (n_p, 3)."""
-    for i in prange(sigma0.shape[0]):
-        status[i] = solve_strip(G, sa_rows[i], sy_rows[i], sigma0[i], rtol, level, n_damp,
-                                el[i], load[i], pl[i], pl_load[i], det[i], det_load[i], err[i],
-                                counts[i])
+def _sweep(G, sa_rows, sy_rows, sigma0, rtol, level, n_damp, el, load, det, det_load, err,
+           pl, pl_load, status, counts):
+    """Solve every pressure (row) with :func:`solve_strip`.
+
+    Arguments as in :mod:`persson_fast._kernels.signature` (no ``variant``): both walls, so
+    ``sy_rows`` and the plastic outputs ``pl``, ``pl_load`` must have rows of length n_t
+    (else BAD_INPUT); ``el`` receives the elastic area, ``err`` the error estimate of the real
+    contact area el + pl, ``counts`` coarse intervals, coarse steps and refinements.
+    """
+    n_p = sigma0.shape[0]
+    n_t = G.shape[0]
+    for i in prange(n_p):
+        if (pl.shape[0] != n_p or pl_load.shape[0] != n_p or pl.shape[1] != n_t
+                or pl_load.shape[1] != n_t or sy_rows.shape[0] != n_p):
+            status[i] = st.BAD_INPUT
+        else:
+            status[i] = solve_strip(G, sa_rows[i], sy_rows[i], sigma0[i], rtol, level, n_damp,
+                                    el[i], load[i], pl[i], pl_load[i], det[i], det_load[i],
+                                    err[i], counts[i])
 
 
 sweep_serial, sweep_parallel = njit_sweeps(_sweep)
