@@ -181,3 +181,118 @@ def test_a_new_method_is_one_registry_entry(monkeypatch):
     b = pf.solve_diffusion(G, [1.0, 2.0], 0.1 + 0.05 * np.sqrt(G), method="fixed-grid", rtol=1e-5)
     assert a.method == "trial-grid" and np.array_equal(a.area, b.area)
 
+
+def _one_signature_call(method, kernel, sy_rows, pl_len, pressures=(1.0, 2.0)):
+    """Call a sweep of the one signature directly (serial kernel of ``method``) on a small
+    scene; the outputs, status and counts."""
+    from persson_fast import methods
+
+    _, _, lead = methods.sweep_kernels(method)
+    G = np.concatenate([[0.0], np.geomspace(1e-3, 10.0, 9)])
+    p = np.array(pressures, dtype=float)
+    n_p, n_t = p.size, G.size
+    sa = np.tile(0.1 + 0.05 * np.sqrt(G), (n_p, 1))
+    outs = [np.zeros((n_p, n_t)) for _ in range(5)]
+    pl = [np.full((n_p, pl_len), 7.0) for _ in range(2)]
+    status = np.full(n_p, -1, dtype=np.int64)
+    counts = np.zeros((n_p, 3), dtype=np.int64)
+    sy = np.zeros((n_p, 0)) if sy_rows is None else np.broadcast_to(sy_rows, (n_p, n_t)).copy()
+    kernel(*lead, G, sa, sy, p, 1e-4, -1, 2, *outs, *pl, status, counts)
+    return outs, pl, status, counts
+
+
+@pytest.mark.parametrize("method", [m for m in METHODS if "sweep" in METHODS[m]
+                                    and not METHODS[m].get("two_walls")])
+def test_one_wall_kernel_refuses_a_finite_upper_wall(method):
+    """Every one-wall sweep, called through the registry with the one signature: an upper
+    wall that is finite anywhere in a row is BAD_INPUT for that row (nothing written); rows
+    of +inf, or of length 0, are no upper wall and give bitwise the same results, with
+    plastic outputs of length n_t set to zero."""
+    from persson_fast import methods
+    from persson_fast._kernels import status as st
+
+    serial, _, _ = methods.sweep_kernels(method)
+    none_outs, _, none_status, none_counts = _one_signature_call(method, serial, None, 0)
+    assert np.all(none_status == st.OK)
+    inf_outs, inf_pl, inf_status, inf_counts = _one_signature_call(method, serial, np.inf, 10)
+    assert np.array_equal(inf_status, none_status)
+    assert np.array_equal(inf_counts, none_counts)
+    for a, b in zip(inf_outs, none_outs):
+        assert np.array_equal(a, b)
+    assert all(np.all(x == 0.0) for x in inf_pl)
+    # a finite value in the second row only (the first is +inf throughout)
+    sy = np.full((2, 10), np.inf)
+    sy[1, 4] = 5.0
+    outs, pl, status, counts = _one_signature_call(method, serial, sy, 10)
+    assert status.tolist() == [st.OK, st.BAD_INPUT]
+    assert all(np.all(x[1] == 0.0) for x in outs) and np.all(counts[1] == 0)
+    assert all(np.all(x[1] == 7.0) for x in pl)
+    assert np.array_equal(outs[0][0], none_outs[0][0])
+    # rows neither of length 0 nor of n_t: bad input
+    _, _, status, _ = _one_signature_call(method, serial, None, 3)
+    assert np.all(status == st.BAD_INPUT)
+
+
+def test_two_wall_kernel_needs_its_upper_wall():
+    """The strip sweep through the registry: without an upper wall (rows of length 0) or
+    without plastic outputs it answers BAD_INPUT; with both it solves."""
+    from persson_fast import methods
+    from persson_fast._kernels import status as st
+
+    serial, _, _ = methods.sweep_kernels("strip")
+    _, _, status, _ = _one_signature_call("strip", serial, None, 10)
+    assert np.all(status == st.BAD_INPUT)
+    _, _, status, _ = _one_signature_call("strip", serial, 4.0, 0)
+    assert np.all(status == st.BAD_INPUT)
+    outs, pl, status, _ = _one_signature_call("strip", serial, 4.0, 10)
+    assert np.all(status == st.OK) and np.all(pl[0][:, -1] > 0.0)
+    np.testing.assert_allclose(outs[0] + pl[0] + outs[2], 1.0, rtol=0.0, atol=1e-12)
+
+
+TRIAL_KERNEL = '''"""A grid method in its own kernel module: a sweep of the one signature (no variant) around
+the fixed-grid solver of one pressure."""
+from persson_fast._jit import njit_sweeps, prange
+from persson_fast._kernels.fixedgrid import solve_fixedgrid_one
+from persson_fast._kernels.signature import no_upper_wall
+from persson_fast._kernels.status import BAD_INPUT
+
+
+def _sweep(G, sa_rows, sy_rows, pressures, rtol, level, n_damp, area, load, det_area,
+           det_load, error, pl_area, pl_load, status, counts):
+    n_p = pressures.shape[0]
+    for k in prange(n_p):
+        if no_upper_wall(sy_rows, pl_area, pl_load, k, n_p, G.shape[0]):
+            status[k] = solve_fixedgrid_one(G, sa_rows[k], pressures[k], rtol, level, n_damp,
+                                            area[k], load[k], det_area[k], det_load[k],
+                                            error[k], counts[k])
+        else:
+            status[k] = BAD_INPUT
+
+
+trial_sweep_serial, trial_sweep_parallel = njit_sweeps(_sweep)
+'''
+
+
+def test_a_new_grid_method_is_a_kernel_module_and_one_entry(tmp_path, monkeypatch):
+    """Trial: a new kernel module (written here, outside the package) and one registry entry
+    naming it; solve_diffusion serves the method serially and on threads, with nothing else
+    edited, and it matches the method whose solver it wraps."""
+    from persson_fast import methods
+
+    (tmp_path / "trial_grid_kernels.py").write_text(TRIAL_KERNEL)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    entry = {"description": "trial", "family": "fixed-grid", "order": 2, "adhesion": False,
+             "jumps": False, "nonlinear": True, "controls_error": False,
+             "sweep": ("trial_grid_kernels", "trial_sweep", None)}
+    monkeypatch.setitem(methods.METHODS, "trial-module", entry)
+    G = np.concatenate([[0.0], np.geomspace(1e-3, 10.0, 12)])
+    p = [0.5, 1.0, 2.0, 3.0]
+    ref = pf.solve_diffusion(G, p, 0.1 + 0.05 * np.sqrt(G), method="fixed-grid", rtol=1e-5,
+                             parallel=False)
+    for parallel in (False, "threads"):
+        r = pf.solve_diffusion(G, p, 0.1 + 0.05 * np.sqrt(G), method="trial-module",
+                               rtol=1e-5, parallel=parallel)
+        assert r.method == "trial-module"
+        for name in ("area", "load", "detached_area", "detached_load", "error_estimate",
+                     "status", "counts"):
+            assert np.array_equal(getattr(r, name), getattr(ref, name)), name
