@@ -119,6 +119,7 @@ import numpy as np
 from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
 from .schedule import fill_state
+from .signature import no_upper_wall
 
 # --- constants of the scheme (dimensionless, y0 = 1, t = 2 G / y0^2) -----------------------
 ALPHA = 0.3           # weight of the onset term of phi (onset length 2 ALPHA sqrt(L_START))
@@ -1040,7 +1041,6 @@ def solve_bnr_one(G, sa, sigma0, rtol, level, out_area, out_load, out_det_area, 
 
 
 # the sweep of the one signature of every grid method
-from .signature import no_upper_wall  # noqa: E402
 
 
 def _bnr_sweep(G, sa_rows, sy_rows, pressures, rtol, level, n_damp, area, load, det_area,

@@ -111,6 +111,7 @@ from .._jit import njit_serial, njit_sweeps, prange
 from . import status as st
 from .schedule import (REPEAT_TESTED, boundary_at, exact_start, fill_state, scaled_times,
                        scaled_values)
+from .signature import no_upper_wall
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf
 from .tridiag import theta_workspace, thomas
 
@@ -698,7 +699,6 @@ def solve_fixedgrid_one(G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
 
 
 # the sweep of the one signature of every grid method
-from .signature import no_upper_wall  # noqa: E402
 
 
 def _fixedgrid_sweep(G, sa_rows, sy_rows, pressures, rtol, level, n_damp, area, load, det_area,
