@@ -4,4 +4,6 @@ Conventions: inputs first, then scalars, then scratch, outputs last; no allocati
 time loops; an integer status per pressure (see :mod:`persson_fast._kernels.status`).
 Every function here is callable from a user's own ``@numba.njit`` code.
 """
-from .status import STATUS_MESSAGES  # noqa: F401
+from .status import STATUS_MESSAGES
+
+__all__ = ["STATUS_MESSAGES"]
