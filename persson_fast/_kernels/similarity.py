@@ -84,7 +84,8 @@ PIECE_HALVE = 1       # piece_flags: the piece takes half the steps (paired in t
 PIECE_KINK = 2        # piece_flags: damped restart at the piece's end (march supports it;
                       # not set: see _first_kink)
 KINK_SCALE = 1.6       # resolution factor of a tolerance-driven solve of a kinked wall ...
-KINK_MIN_SCALE = 0.6   # ... and its least resolution scale (that of rtol ~ 8e-6)
+KINK_MIN_SCALE = 0.6   # ... and its least resolution scale (that of rtol ~ 8e-6) ...
+KINK_FEW = 4           # ... where it has at most this many kinks
 KINK_SLOPE_JUMP = 0.25 # a slope change above this fraction of the larger slope is a kink
 GAUSS3_X = (-math.sqrt(0.6), 0.0, math.sqrt(0.6))
 GAUSS3_W = (5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0)
@@ -557,26 +558,43 @@ def _schedule_steps(G_k, sa_k, i_first, g_start, nper, nper_width, piece_flags, 
 
 
 @njit_serial
+def _is_kink(G_k, sa_k, i):
+    """The wall's slope jumps at schedule point i by more than KINK_SLOPE_JUMP of the larger
+    of its two slopes (both pieces of positive length)."""
+    d1 = G_k[i] - G_k[i - 1]
+    d2 = G_k[i + 1] - G_k[i]
+    if not (d1 > 0.0 and d2 > 0.0):
+        return False
+    s1 = (sa_k[i] - sa_k[i - 1]) / d1
+    s2 = (sa_k[i + 1] - sa_k[i]) / d2
+    return abs(s2 - s1) > KINK_SLOPE_JUMP * max(abs(s1), abs(s2))
+
+
+@njit_serial
 def _first_kink(G_k, sa_k, i_first):
-    """The first schedule point from the start on where the wall's slope jumps by more than
-    KINK_SLOPE_JUMP of the larger slope (a kink of the sampled wall), or the number of points
-    when there is none. The last point the exact start covers counts: a linear-wall start
-    ends at the first kink, and the march then starts on it. From there on the ladder's extrapolated estimate assumes order
-    KINK_EXTRAPOLATED_ORDER (the extrapolation loses order across a jump of the wall speed;
-    at the default order 3 the estimate sat up to 2x below the error: issue 12).
-    (A damped restart at kinks, PIECE_KINK, was tried: it fixed some kinked cases and broke
-    others at coarse tolerances, so it is not set here.)"""
+    """The first schedule point from the start on where the wall kinks (:func:`_is_kink`), or
+    the number of points when there is none. The last point the exact start covers counts:
+    a linear-wall start ends at the first kink, and the march then starts on it. From there
+    on the ladder's extrapolated estimate assumes order KINK_EXTRAPOLATED_ORDER (the
+    extrapolation loses order across a jump of the wall speed; at the default order 3 the
+    estimate sat up to 2x below the error: issue 12). (A damped restart at kinks,
+    PIECE_KINK, was tried: it fixed some kinked cases and broke others at coarse tolerances,
+    so it is not set here.)"""
     n = G_k.shape[0]
     for i in range(max(i_first - 1, 1), n - 1):
-        d1 = G_k[i] - G_k[i - 1]
-        d2 = G_k[i + 1] - G_k[i]
-        if not (d1 > 0.0 and d2 > 0.0):
-            continue
-        s1 = (sa_k[i] - sa_k[i - 1]) / d1
-        s2 = (sa_k[i + 1] - sa_k[i]) / d2
-        if abs(s2 - s1) > KINK_SLOPE_JUMP * max(abs(s1), abs(s2)):
+        if _is_kink(G_k, sa_k, i):
             return i
     return n
+
+
+@njit_serial
+def _kink_count(G_k, sa_k, i_from):
+    """The number of kinks (:func:`_is_kink`) from schedule point ``i_from`` on."""
+    count = 0
+    for i in range(max(i_from, 1), G_k.shape[0] - 1):
+        if _is_kink(G_k, sa_k, i):
+            count += 1
+    return count
 
 
 @njit_serial
@@ -855,13 +873,14 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             fill_state(i_first - 1, nt, 0.0, 0.0, 1.0, -sigma0, 0.0, out_area, out_load,
                         out_det_area, out_det_load, out_error)
             return st.OK
-    # a kinked wall: the ladder after the kink converges erratically (its extrapolated value
-    # was measured 8x worse than the finer run, with a ladder that looked asymptotic), so a
-    # solve to a tolerance takes KINK_SCALE times the resolution, at least KINK_MIN_SCALE
-    # (on 2400 random one-kink walls at rtol 1e-4 and 1e-6 against bnr: no miss, from 20 in
-    # 900 without)
+    # a wall with a few isolated kinks: the ladder after a kink converges erratically (its
+    # extrapolated value was measured 8x worse than the finer run, with a ladder that looked
+    # asymptotic), so a solve to a tolerance takes KINK_SCALE times the resolution, at least
+    # KINK_MIN_SCALE (on 2400 random one-kink walls at rtol 1e-4 and 1e-6 against bnr: no
+    # miss, from 20 in 900 without); a smooth wall sampled coarsely has a 'kink' at most
+    # samples and keeps the resolution of its tolerance
     kink_first = _first_kink(G_k, sa_k, i_first) if detect_kinks else nt + 1
-    if rtol > 0.0 and kink_first <= nt:
+    if rtol > 0.0 and kink_first <= nt and _kink_count(G_k, sa_k, kink_first) <= KINK_FEW:
         scale_x = max(KINK_SCALE * scale_x, KINK_MIN_SCALE)
         scale_t = max(KINK_SCALE * scale_t, KINK_MIN_SCALE)
     # grid: domain, spacing (tolerance, start width, Peclet), step density
