@@ -131,3 +131,11 @@ def check_level(level) -> None:
     if level is not None and (isinstance(level, bool) or not isinstance(level, (int, np.integer))
                               or not 0 <= level <= 10):
         raise ValueError(f"level must be an integer in [0, 10] [-] or None; got level = {level!r}")
+
+
+def check_whole_number(value, name: str, minimum: int = 1) -> int:
+    """A whole number >= ``minimum`` (an int, or a float with an integral value)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer, float)) or \
+            value != int(value) or int(value) < minimum:
+        raise ValueError(f"{name} must be a whole number >= {minimum} [-]; got {name} = {value!r}")
+    return int(value)

@@ -15,7 +15,9 @@ import warnings
 
 import numpy as np
 
-from ._validation import as_float_array, check_choice, check_finite, check_nonnegative, check_positive
+from ._io import write_text_atomic
+from ._validation import (as_float_array, check_choice, check_finite, check_nonnegative, check_positive,
+                          check_whole_number)
 from .surface_models import SurfaceModel, register_surface_model
 
 __all__ = [
@@ -477,8 +479,6 @@ class Surface(abc.ABC):
         Comment lines give the surface's repr and the grid; the header is ``q [1/m],C [m^4]``;
         numbers are written with ``repr`` (they read back bit for bit).
         """
-        from .topography import write_spectrum_csv
-
         return write_spectrum_csv(self, path, points_per_decade=points_per_decade)
 
     def elastic_energy_full_contact(self, e_star) -> float:
@@ -513,3 +513,39 @@ class Surface(abc.ABC):
     def __repr__(self) -> str:
         args = ", ".join(f"{key}={value!r}" for key, value in self._repr_params().items())
         return f"{type(self).__name__}({args})"
+
+
+def _grid(surface, points_per_decade: int) -> np.ndarray:
+    """The q at which ``to_csv`` tabulates a surface: a table's own nodes, or a log grid."""
+    q0, q1 = surface.q0, surface.q1
+    if hasattr(surface, "q_table"):
+        inner = surface.q_table[(surface.q_table > q0) & (surface.q_table < q1)]
+        return np.concatenate(([q0], inner, [q1]))
+    n = max(1, int(math.ceil(points_per_decade * math.log10(q1 / q0))))
+    grid = q0 * (q1 / q0) ** (np.arange(n + 1) / n)
+    grid[0], grid[-1] = q0, q1
+    extra = []
+    if hasattr(surface, "breakpoints"):
+        extra = [b for b in np.asarray(surface.breakpoints()) if q0 < b < q1]
+    return np.unique(np.concatenate((grid, extra)))
+
+
+def write_spectrum_csv(surface, path, *, points_per_decade=20) -> str:
+    """Write ``surface``'s C(q) to a CSV file, atomically (see ``Surface.to_csv``)."""
+    ppd = check_whole_number(points_per_decade, "points_per_decade")
+    q = _grid(surface, ppd)
+    c = np.asarray(surface.psd(q), dtype=np.float64)
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        raise IsADirectoryError(f"cannot write {path!r}: it is a folder")
+    how = ("the table's own nodes inside [q0, q1]" if hasattr(surface, "q_table") else
+           f"{ppd} points per decade, log-spaced, plus the model's breakpoints")
+    lines = ["# persson_fast spectrum C(q), Persson's isotropic 2-D convention: "
+             "h_rms^2 = 2 pi int q C dq",
+             f"# surface: {surface!r}",
+             f"# q0 = {surface.q0!r} 1/m, q1 = {surface.q1!r} 1/m; tabulated on {q.size} "
+             f"points: {how}",
+             "q [1/m],C [m^4]"]
+    lines += [f"{a!r},{b!r}" for a, b in zip(q.tolist(), c.tolist())]
+    write_text_atomic(path, "\n".join(lines) + "\n")
+    return path

@@ -191,7 +191,8 @@ class TabulatedPSD(Surface):
         from .topography import spectrum_from_heights
 
         q, c, lo, hi, info = spectrum_from_heights(
-            heights, pixel_size, q0=q0, q1=q1, bins_per_decade=bins_per_decade, window=window,
+            heights, pixel_size, table=TabulatedPSD, q0=q0, q1=q1,
+            bins_per_decade=bins_per_decade, window=window,
             periodic=periodic, detrend=detrend, line_scans=line_scans, hurst=hurst)
         out = cls(q, c, q0=lo, q1=hi)
         out.info = info
@@ -225,7 +226,8 @@ class TabulatedPSD(Surface):
         from .topography import spectrum_from_topography
 
         q, c, lo, hi, info = spectrum_from_topography(
-            topography, q0=q0, q1=q1, bins_per_decade=bins_per_decade, window=window,
+            topography, table=TabulatedPSD, q0=q0, q1=q1,
+            bins_per_decade=bins_per_decade, window=window,
             detrend=detrend, line_scans=line_scans, hurst=hurst)
         out = cls(q, c, q0=lo, q1=hi)
         out.info = info

@@ -60,8 +60,8 @@ import warnings
 
 import numpy as np
 
-from ._io import write_text_atomic
-from ._validation import as_float_array, check_positive, optional_import
+from ._validation import as_float_array, check_positive, check_whole_number, optional_import
+from .surface_base import write_spectrum_csv
 
 __all__ = [
     "TOPOGRAPHY_EXTRA",
@@ -135,13 +135,6 @@ def _choice(value, name: str, choices) -> str:
         valid = ", ".join(repr(c) for c in choices)
         raise ValueError(f"{name} must be one of {valid}; got {value!r}")
     return value
-
-
-def _positive_int(value, name: str, minimum: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer, float)) or \
-            value != int(value) or int(value) < minimum:
-        raise ValueError(f"{name} must be a whole number >= {minimum} [-]; got {name} = {value!r}")
-    return int(value)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -285,12 +278,10 @@ def _merge_empty(edges: np.ndarray, counts: np.ndarray) -> np.ndarray:
     return np.asarray(edges)
 
 
-def _conserving_table(edges, target, k: int):
+def _conserving_table(edges, target, k: int, table):
     """Nodes (q, C) of a log-log table whose integral ∫ q^k C dq over each bin equals
     ``target`` (bins given by ``edges``), found by multiplicative sweeps from the bin
-    densities."""
-    from .tabulated import TabulatedPSD
-
+    densities; ``table(q, C)`` builds the table model whose exact moments are matched."""
     lo, hi = edges[:-1], edges[1:]
     measure = (hi ** (k + 1) - lo ** (k + 1)) / (k + 1)
     dens = target / measure
@@ -316,8 +307,7 @@ def _conserving_table(edges, target, k: int):
 
     c = extend(c)
     for _ in range(500):
-        table = TabulatedPSD(q, c)
-        got = table.moment(k, lo, hi)
+        got = table(q, c).moment(k, lo, hi)
         ratio = np.ones_like(got)
         ok = positive & (got > 0)
         ratio[ok] = target[ok] / got[ok]
@@ -371,10 +361,14 @@ def _hurst_from_line_spectrum(q, c1, cell):
     return float(np.clip(-(slope + 1.0) / 2.0, 0.0, 1.0))
 
 
-def spectrum_from_heights(heights, pixel_size, *, q0=None, q1=None, bins_per_decade=10,
+def spectrum_from_heights(heights, pixel_size, *, table, q0=None, q1=None, bins_per_decade=10,
                           window=None, periodic=False, detrend=None, line_scans=None,
                           hurst=None, q_reliable=None, source="heights"):
     """Binned Persson spectrum of a map or line scans: the work of ``TabulatedPSD.from_heights``.
+
+    ``table(q, C)`` builds the tabulated model (``TabulatedPSD``) whose exact moments keep
+    the power of every bin; the caller passes it, so that this module does not import the
+    model layer above it.
 
     Returns
     -------
@@ -396,7 +390,7 @@ def spectrum_from_heights(heights, pixel_size, *, q0=None, q1=None, bins_per_dec
     if detrend is None:
         detrend = "mean" if periodic else "plane"
     detrend = _choice(detrend, "detrend", _DETRENDS)
-    bins_per_decade = _positive_int(bins_per_decade, "bins_per_decade")
+    bins_per_decade = check_whole_number(bins_per_decade, "bins_per_decade")
     if lines:
         dx = _pixel_sizes(pixel_size, 1)[0] if np.ndim(pixel_size) == 0 else \
             _pixel_sizes(np.asarray(pixel_size, dtype=float).reshape(-1)[-1:], 1)[0]
@@ -447,7 +441,7 @@ def spectrum_from_heights(heights, pixel_size, *, q0=None, q1=None, bins_per_dec
             "h_rms_data": math.sqrt(cm.sum() * cell)}
     if lines:
         # 2 ∫_bin C_1D dq = the bin's mean square (q of both signs)
-        q1d, c1d = _conserving_table(edges, 0.5 * power, 0)
+        q1d, c1d = _conserving_table(edges, 0.5 * power, 0, table)
         centres = np.sqrt(edges[:-1] * edges[1:])
         if hurst is None:
             H = _hurst_from_line_spectrum(centres, 0.5 * power / np.diff(edges), cell)
@@ -463,7 +457,7 @@ def spectrum_from_heights(heights, pixel_size, *, q0=None, q1=None, bins_per_dec
             1 if h.ndim == 1 else h.shape[0]), scan_length=length)
         return q1d, c1d * factor / q1d, q0, q1, info
     # 2π ∫_bin q C dq = the bin's mean square
-    q2, c2 = _conserving_table(edges, power / (2.0 * math.pi), 1)
+    q2, c2 = _conserving_table(edges, power / (2.0 * math.pi), 1, table)
     info.update(scan_size=(ly, lx), shape=tuple(h.shape))
     return q2, c2, q0, q1, info
 
@@ -489,7 +483,8 @@ def _unit_factor(unit) -> float:
 
 def spectrum_from_topography(topography, **kwargs):
     """``spectrum_from_heights`` for a SurfaceTopography map or uniform line scan (heights
-    and pixel size converted to m, periodicity and reliability cut-off taken from it)."""
+    and pixel size converted to m, periodicity and reliability cut-off taken from it);
+    ``kwargs`` as for ``spectrum_from_heights``, ``table`` included."""
     if isinstance(topography, np.ndarray) or not hasattr(topography, "heights"):
         raise ValueError(
             f"topography must be a SurfaceTopography Topography or UniformLineScan; got "
@@ -675,42 +670,6 @@ def read_spectrum(path, *, q_unit=None, C_unit=None):
         raise ValueError(f"q must be strictly increasing [1/m]; got q = {float(q[i])!r} on line "
                          f"{lines[i]} and q = {float(q[i + 1])!r} on line {lines[i + 1]} of {path!r}")
     return q, c
-
-
-def _grid(surface, points_per_decade: int) -> np.ndarray:
-    """The q at which ``to_csv`` tabulates a surface: a table's own nodes, or a log grid."""
-    q0, q1 = surface.q0, surface.q1
-    if hasattr(surface, "q_table"):
-        inner = surface.q_table[(surface.q_table > q0) & (surface.q_table < q1)]
-        return np.concatenate(([q0], inner, [q1]))
-    n = max(1, int(math.ceil(points_per_decade * math.log10(q1 / q0))))
-    grid = q0 * (q1 / q0) ** (np.arange(n + 1) / n)
-    grid[0], grid[-1] = q0, q1
-    extra = []
-    if hasattr(surface, "breakpoints"):
-        extra = [b for b in np.asarray(surface.breakpoints()) if q0 < b < q1]
-    return np.unique(np.concatenate((grid, extra)))
-
-
-def write_spectrum_csv(surface, path, *, points_per_decade=20) -> str:
-    """Write ``surface``'s C(q) to a CSV file, atomically (see ``Surface.to_csv``)."""
-    ppd = _positive_int(points_per_decade, "points_per_decade")
-    q = _grid(surface, ppd)
-    c = np.asarray(surface.psd(q), dtype=np.float64)
-    path = os.fspath(path)
-    if os.path.isdir(path):
-        raise IsADirectoryError(f"cannot write {path!r}: it is a folder")
-    how = ("the table's own nodes inside [q0, q1]" if hasattr(surface, "q_table") else
-           f"{ppd} points per decade, log-spaced, plus the model's breakpoints")
-    lines = ["# persson_fast spectrum C(q), Persson's isotropic 2-D convention: "
-             "h_rms^2 = 2 pi int q C dq",
-             f"# surface: {surface!r}",
-             f"# q0 = {surface.q0!r} 1/m, q1 = {surface.q1!r} 1/m; tabulated on {q.size} "
-             f"points: {how}",
-             "q [1/m],C [m^4]"]
-    lines += [f"{a!r},{b!r}" for a, b in zip(q.tolist(), c.tolist())]
-    write_text_atomic(path, "\n".join(lines) + "\n")
-    return path
 
 
 # ----------------------------------------------------------------------------------------------

@@ -8,14 +8,10 @@ import persson_fast as pf
 ROOT = pathlib.Path(pf.__file__).parent
 
 #: cycles still open, each named with the reason; a new cycle fails the test, and so does a
-#: listed one that is gone (update the list)
-KNOWN = {
-    # TabulatedPSD.from_heights/from_topography/from_file (tabulated) delegate to topography,
-    # whose bin-conserving table is built with TabulatedPSD's exact moments, and Surface.to_csv
-    # (surface_base) writes through topography.write_spectrum_csv: the surfaces <-> topography
-    # pair of old, whose two ends went to two modules when surfaces.py was split
-    ("persson_fast.surface_base", "persson_fast.tabulated", "persson_fast.topography"),
-}
+#: listed one that is gone (update the list). None: the surfaces <-> topography pair of old
+#: is gone (the table model is handed to topography's binning, and Surface.to_csv writes
+#: from surface_base)
+KNOWN = set()
 
 
 def _graph():
