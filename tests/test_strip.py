@@ -9,7 +9,7 @@ translating_walls, error estimate ~2x the true error; <= 0.15 rtol against plast
 """
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as hs
+from hypothesis import assume, given, settings, strategies as hs
 
 import persson_fast as pf
 from persson_fast._kernels import status as st
@@ -102,7 +102,7 @@ def test_bookkeeping_identities(s_frac, a_frac, c1, c2, curv):
     x = G / W ** 2
     sa = a + c1 * W * x * (1.0 - 0.5 * curv * x)
     sy = Y + c2 * W * x * (1.0 + curv * np.sqrt(x))
-    assert np.all(sa + sy > 0)
+    assume(np.all(sa + sy > 0))       # the walls meet at G = W^2 when c1 = c2 = -1/2, a = 0
     s0 = -a + s_frac * W
     out, _ = solve_two_walls(G, [s0], sa, sy, rtol=1e-5)
     total = out["elastic_area"][0] + out["plastic_area"][0] + out["detached_area"][0]
