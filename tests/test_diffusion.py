@@ -227,7 +227,7 @@ def test_theta_step_any_size(n_nodes, theta):
     p[0] = p[-1] = 0.0
     expected = ref.theta_step(p, h, -0.5, 1.02, 0.07, theta)
     got = p.copy()
-    theta_step(got, h, -0.5, 1.02, 0.07, theta, *[np.empty(n_nodes) for _ in range(8)])
+    theta_step(got, h, -0.5, 1.02, 0.07, theta, *[np.empty(n_nodes) for _ in range(3)])
     assert np.max(np.abs(got - expected)) < TWIN * 100
 
 
@@ -240,7 +240,7 @@ def test_theta_step_large_steps_many_nodes():
     p[0] = p[-1] = 0.0
     expected = ref.theta_step(p, h, 0.0, 1.0, 0.5, 0.5)
     got = p.copy()
-    theta_step(got, h, 0.0, 1.0, 0.5, 0.5, *[np.empty(n_nodes) for _ in range(8)])
+    theta_step(got, h, 0.0, 1.0, 0.5, 0.5, *[np.empty(n_nodes) for _ in range(3)])
     assert np.all(np.isfinite(got))
     assert np.max(np.abs(got - expected)) < TWIN * 100
 
@@ -256,6 +256,6 @@ def test_theta_step_matches_dense(theta, drift):
     diff = 1.0 + (drift * h) ** 2 / 12
     expected = ref.theta_step(p, h, drift, diff, 0.05, theta)
     got = p.copy()
-    scratch = [np.empty(n_nodes) for _ in range(8)]
+    scratch = [np.empty(n_nodes) for _ in range(3)]
     theta_step(got, h, drift, diff, 0.05, theta, *scratch)
     assert np.max(np.abs(got - expected)) < TWIN * 100

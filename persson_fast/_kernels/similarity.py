@@ -453,8 +453,7 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                         # no layer and fitting would only add diffusion where the mass sits
                         diff = fitted_diffusion(drift * h) if v < 0.0 else 1.0
                         fw0, ff0 = _fluxes(p, h, drift, diff)
-                        theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up,
-                                   rhs, scratch)
+                        theta_step(p, h, drift, diff, dt, theta, lo, di, up)
                         fw1, ff1 = _fluxes(p, h, drift, diff)
                         d_det = dt * ((1.0 - theta) * fw0 + theta * fw1)
                         # compensated (Kahan) sums: thousands of tiny increments

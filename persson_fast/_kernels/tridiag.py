@@ -131,7 +131,7 @@ def _theta_row(i, lo0, up0, e_d, e, i_, p):
 
 
 @njit_serial
-def theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs, scratch):
+def theta_step(p, h, drift, diff, dt, theta, lo, di, up):
     """One theta-step ``(I - theta dt L) p_new = (I + (1-theta) dt L) p`` in place.
 
     ``p`` holds all nodes (p[0] and p[-1] are the Dirichlet zeros). theta = 1/2 is
@@ -148,8 +148,8 @@ def theta_step(p, h, drift, diff, dt, theta, lo, di, up, a_lo, a_di, a_up, rhs, 
     recursions whose one division per row is off the chain. The continuants are kept in
     range by exact powers of two (CONTINUANT_BIG). The matrices here are diagonally dominant
     M-matrices (cell Peclet number <= 2), for which the recursion is as stable as the usual
-    form. ``lo``, ``di`` and ``up`` of the workspace hold the eliminated rows; the other
-    arguments are kept for the callers' workspace of :func:`theta_workspace`.
+    form. ``lo``, ``di`` and ``up`` (at least as long as ``p``, e.g. the first three arrays of
+    :func:`theta_workspace`) hold the eliminated rows.
     """
     m = p.shape[0] - 2
     inv_h2 = diff / (h * h)
