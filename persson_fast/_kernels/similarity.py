@@ -50,7 +50,7 @@ from . import status as st
 from .schedule import (REPEAT_ENDS, boundary_at, exact_start, fill_state, scaled_times,
                        scaled_values)
 from .special import linear_wall_area_moment, linear_wall_density, normal_pdf, ndtr
-from .tridiag import fitted_diffusion, theta_step, theta_workspace
+from .tridiag import fitted_diffusion, theta_step
 
 # --- constants of the scheme (dimensionless, y0 = 1) ------------------------------------
 C_START = 0.25        # latest start G_s = C_START * y0^2: start std = 0.71 y0
@@ -299,8 +299,8 @@ def _fluxes(p, h, drift, diff):
 @njit_serial
 def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nodes, h,
           n_steps_per_lng, n_steps_per_width, refine, n_damp, theta_main, coarsen_at,
-          piece_flags, p, tmp, lo, di, up, a_lo, a_di, a_up, rhs, scratch, out_area, out_load,
-          out_det_area, out_det_load, counts):
+          piece_flags, p, tmp, lo, di, up, out_area, out_load, out_det_area, out_det_load,
+          counts):
     """March one resolution from the exact start at ``g_start`` through the schedule.
 
     Scaled units (y0 = 1). Each schedule piece gets ``refine`` times the steps that
@@ -994,7 +994,7 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
     size = 2 * n_c + 1
     p = np.empty(size)
     tmp = np.empty(size)
-    lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(size)
+    lo, di, up = np.empty(size), np.empty(size), np.empty(size)
     r_area = np.empty((3, nt + 1))
     r_load = np.empty((3, nt + 1))
     r_det = np.empty((3, nt + 1))
@@ -1055,13 +1055,13 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             size = n_j + 1
             p = np.empty(size)
             tmp = np.empty(size)
-            lo, di, up, a_lo, a_di, a_up, rhs, scratch = theta_workspace(size)
+            lo, di, up = np.empty(size), np.empty(size), np.empty(size)
         slot = j % 3
         if j == 0 and n_keep < nt + 1:
             s_j, _ = march(G_t, sa_t, i_first_t, g_start, start_linear, b_lin, sa0s, sig0s,
                            n_j + 1, 2.0 * h_c, nper_h, nper_width_h, np.int64(1), n_damp, theta,
-                           coarsen_at, flags_t, p[: n_j + 1], tmp[: n_j + 1], lo, di, up, a_lo,
-                           a_di, a_up, rhs, scratch, t_area, t_load, t_det, t_det_load, counts)
+                           coarsen_at, flags_t, p[: n_j + 1], tmp[: n_j + 1], lo, di, up,
+                           t_area, t_load, t_det, t_det_load, counts)
             kk = 0
             for k in range(nt + 1):
                 if keep[k]:
@@ -1073,7 +1073,7 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             s_j, _ = march(G_k, sa_k, i_first, g_start, start_linear, b_lin, sa0s, sig0s,
                            n_j + 1, 2.0 * h_c / (1 << j), nper_h, nper_width_h, np.int64(1 << j),
                            n_damp, theta, coarsen_at, piece_flags, p[: n_j + 1], tmp[: n_j + 1],
-                           lo, di, up, a_lo, a_di, a_up, rhs, scratch, r_area[slot],
+                           lo, di, up, r_area[slot],
                            r_load[slot], r_det[slot], r_det_load[slot], counts)
         run_status[slot] = s_j
         if j >= 2:

@@ -17,8 +17,8 @@ CONTINUANT_SMALL = 2.0 ** -400
 
 @njit_serial
 def theta_workspace(n):
-    """The (n,) work arrays of a theta step (:func:`theta_step`, and the fixed-grid step):
-    lo, di, up, a_lo, a_di, a_up, rhs, scratch."""
+    """The (n,) work arrays of the fixed-grid theta step: lo, di, up, a_lo, a_di, a_up, rhs,
+    scratch (:func:`theta_step` uses three arrays only)."""
     return (np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n), np.empty(n),
             np.empty(n), np.empty(n))
 
@@ -97,28 +97,6 @@ def fitted_diffusion(peclet):
     return x / math.tanh(x)
 
 
-@njit_serial
-def operator_coefficients(h, drift, diff, n_nodes, lo, di, up):
-    """Coefficients of the semi-discrete Fokker-Planck operator on interior nodes.
-
-    L p_j = diff (p_{j+1} - 2 p_j + p_{j-1})/h^2 + (F_{j+1/2} - F_{j-1/2})/h,
-    F_{j+1/2} = c_{j+1/2} (p_j + p_{j+1})/2,  c(xi) = 2 xi - drift,  xi_j = j h.
-
-    ``diff`` is uniform in space (see :func:`fitted_diffusion`), so the discrete first
-    moment obeys the same exact identity as the continuous one. Interior node
-    j = 1..n_nodes-2 is stored at index j-1 of ``lo``, ``di``, ``up``.
-    """
-    inv_h2 = diff / (h * h)
-    half_over_h = 0.5 / h
-    for j in range(1, n_nodes - 1):
-        c_plus = 2.0 * (j + 0.5) * h - drift
-        c_minus = 2.0 * (j - 0.5) * h - drift
-        k = j - 1
-        lo[k] = inv_h2 - c_minus * half_over_h
-        di[k] = -2.0 * inv_h2 + (c_plus - c_minus) * half_over_h
-        up[k] = inv_h2 + c_plus * half_over_h
-
-
 @njit_inline
 def _theta_row(i, lo0, up0, e_d, e, i_, p):
     """Row i (node i + 1) of the theta step: (sub-diagonal, super-diagonal, right-hand side)
@@ -135,9 +113,16 @@ def theta_step(p, h, drift, diff, dt, theta, lo, di, up):
     """One theta-step ``(I - theta dt L) p_new = (I + (1-theta) dt L) p`` in place.
 
     ``p`` holds all nodes (p[0] and p[-1] are the Dirichlet zeros). theta = 1/2 is
-    Crank-Nicolson, theta = 1 implicit Euler. L is the operator of
-    :func:`operator_coefficients`, whose coefficients are linear in the node index
-    (lo_j = lo0 - j, up_j = up0 + j, a constant diagonal), so they are formed in the loop.
+    Crank-Nicolson, theta = 1 implicit Euler. L is the semi-discrete Fokker-Planck operator
+    on the interior nodes,
+
+        L p_j = diff (p_{j+1} - 2 p_j + p_{j-1})/h^2 + (F_{j+1/2} - F_{j-1/2})/h,
+        F_{j+1/2} = c_{j+1/2} (p_j + p_{j+1})/2,  c(xi) = 2 xi - drift,  xi_j = j h,
+
+    with ``diff`` uniform in space (see :func:`fitted_diffusion`), so that the discrete first
+    moment obeys the same exact identity as the continuous one. Its coefficients are linear
+    in the node index (lo_j = lo0 - j, up_j = up0 + j, a constant diagonal), so they are
+    formed in the loop.
 
     The tridiagonal solve is a twisted Thomas algorithm written with continuants (see
     :func:`thomas`): rows 0 .. k-1 are eliminated downwards and rows m-1 .. k+1 upwards in
@@ -148,8 +133,7 @@ def theta_step(p, h, drift, diff, dt, theta, lo, di, up):
     recursions whose one division per row is off the chain. The continuants are kept in
     range by exact powers of two (CONTINUANT_BIG). The matrices here are diagonally dominant
     M-matrices (cell Peclet number <= 2), for which the recursion is as stable as the usual
-    form. ``lo``, ``di`` and ``up`` (at least as long as ``p``, e.g. the first three arrays of
-    :func:`theta_workspace`) hold the eliminated rows.
+    form. ``lo``, ``di`` and ``up`` (at least as long as ``p``) hold the eliminated rows.
     """
     m = p.shape[0] - 2
     inv_h2 = diff / (h * h)
