@@ -87,7 +87,8 @@ def solve_two_walls(G, pressures, sa_rows, sy_rows, *, rtol, n_damp=1, level=-1,
         :mod:`persson_fast._kernels.status`: OK, RTOL_NOT_MET, GRID_CAP, START_UNRESOLVED,
         NEGATIVE_DENSITY, NONFINITE); ``counts`` (n_p, 3) int64 (coarse intervals, coarse
         steps, refinements). Identities: A_el + A_pl + D = 1 to rounding,
-        load + plastic_load - detached_load = sigma0 to the discretisation error.
+        load + plastic_load - detached_load = sigma0 to rounding (the scheme conserves the
+        load moment exactly, see :mod:`persson_fast._kernels.strip`).
     timings : dict
         Seconds: ``solve``, and ``compile`` when this call compiled the kernel.
 

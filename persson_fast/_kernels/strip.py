@@ -16,15 +16,20 @@ mapped onto y = (sigma + sigma_a(G)) / w(G) in [0, 1], w = sigma_a + sigma_y; th
 p = w P, obeys p_G = (1/w^2) p_yy - d/dy (v p) with the frame velocity v = (sigma_a' - y w')/w.
 Space: conservative central differences on y_j = j/n, p = 0 at both walls. The wall speeds are
 the secants of their pieces (the schedule samples, kinks included, are step boundaries).
-Time: Crank-Nicolson; the first ``n_damp`` steps are two implicit-Euler half steps each
-(Rannacher start), and so are the first ``n_damp`` steps after a kink of a wall (its speed
+Time: Crank-Nicolson with the operator at the step's midpoint (the implicit midpoint rule);
+the first ``n_damp`` steps are two implicit-Euler half steps each, their operator at the start
+of the half step (Rannacher start), and so are the first ``n_damp`` steps after a kink of a wall (its speed
 jumps by more than KINK_JUMP: the sudden change of the boundary's speed excites grid-scale
 modes, which Crank-Nicolson carries on with a factor near -1 per step). Steps grow
 geometrically from the start (dt = REL_STEP G), capped at MAX_STEP w^2 and by the wall travel
 per step (a fraction 1/N_WIDTH of the profile width sqrt(2G)). The absorbed areas are the
 discrete boundary fluxes integrated by the trapezoid rule, so that A_el + A_pl + D = 1 holds
-to rounding; the absorbed loads are the fluxes times the walls' stresses (the load balance
-L + plastic_load - detached_load = sigma0 then holds to the discretisation error).
+to rounding; the absorbed loads are the fluxes times the walls' stresses at the time the
+step's operator is taken at, and the load balance L + plastic_load - detached_load = sigma0
+holds to rounding too. Why: the node stresses sigma_j = y_j w - sigma_a are linear in G within
+a step, the central differences satisfy sum_j sigma_j (L p)_j h = (outflow terms at the walls)
+- sum_j sigma_j' p_j h at any one G, and with the operator at the midpoint (Crank-Nicolson) or
+at the start (implicit Euler) the frame motion's term cancels exactly over the step.
 
 Start: an exact solution at a small G_s. Either the free Gaussian N(sigma - sigma0; 2 G_s),
 while both walls stay >= K_FAR standard deviations away over [0, G_s], or the exact density of
@@ -344,17 +349,18 @@ def _march(G_k, sa_k, sy_k, gs, piece, rec, k_first, n_sub, n_damp, n, kind, sig
             dt = g1 - g0
             sa0 = _wall_at(G_k, sa_k, k, g0)
             sy0 = _wall_at(G_k, sy_k, k, g0)
-            sa1 = _wall_at(G_k, sa_k, k, g1)
-            sy1 = _wall_at(G_k, sy_k, k, g1)
             if damp_left > 0:
                 damp_left -= 1
                 gm = 0.5 * (g0 + g1)
                 sam = _wall_at(G_k, sa_k, k, gm)
                 sym = _wall_at(G_k, sy_k, k, gm)
                 for half in range(2):
+                    # the operator at the start of the half step: with the nodes' stresses
+                    # linear in G, sum sigma_j(G_b) p_b - sum sigma_j(G_a) p_a is then exactly
+                    # the half step times the walls' stresses at G_a times their outflows
                     c = (gm - g0) if half == 0 else (g1 - gm)
-                    sab = sam if half == 0 else sa1
-                    syb = sym if half == 0 else sy1
+                    sab = sa0 if half == 0 else sam
+                    syb = sy0 if half == 0 else sym
                     o_lo, o_up = _assemble(sab + syb, sa_dot, w_dot, h, n, c, lo, di, up)
                     for j in range(n_in):
                         rhs[j] = p[j + 1]
@@ -367,18 +373,24 @@ def _march(G_k, sa_k, sy_k, gs, piece, rec, k_first, n_sub, n_damp, n, kind, sig
                     det_load += c * sab * f_lo
                     pl_load += c * syb * f_up
             else:
+                # Crank-Nicolson with the operator at the step's midpoint (implicit midpoint
+                # rule): the load moment changes by exactly dt/2 times the walls' midpoint
+                # stresses times their outflows at both ends of the step
                 c = 0.5 * dt
-                o_lo0, o_up0 = _explicit(p, sa0 + sy0, sa_dot, w_dot, h, n, c, rhs)
-                f_lo0 = o_lo0 * p[1]
-                f_up0 = o_up0 * p[n - 1]
-                o_lo1, o_up1 = _assemble(sa1 + sy1, sa_dot, w_dot, h, n, c, lo, di, up)
+                gm = 0.5 * (g0 + g1)
+                sam = _wall_at(G_k, sa_k, k, gm)
+                sym = _wall_at(G_k, sy_k, k, gm)
+                o_lo, o_up = _explicit(p, sam + sym, sa_dot, w_dot, h, n, c, rhs)
+                q_lo = p[1]
+                q_up = p[n - 1]
+                _assemble(sam + sym, sa_dot, w_dot, h, n, c, lo, di, up)
                 thomas(lo[:n_in], di[:n_in], up[:n_in], rhs[:n_in], scratch[:n_in], p[1:n])
-                f_lo1 = o_lo1 * p[1]
-                f_up1 = o_up1 * p[n - 1]
-                det += c * (f_lo0 + f_lo1)
-                pl += c * (f_up0 + f_up1)
-                det_load += c * (sa0 * f_lo0 + sa1 * f_lo1)
-                pl_load += c * (sy0 * f_up0 + sy1 * f_up1)
+                f_lo = c * o_lo * (q_lo + p[1])
+                f_up = c * o_up * (q_up + p[n - 1])
+                det += f_lo
+                pl += f_up
+                det_load += sam * f_lo
+                pl_load += sym * f_up
         # records at the boundary i + 1
         if kr < n_rec and rec[kr] == i + 1:
             sa = _wall_at(G_k, sa_k, k, gb)
