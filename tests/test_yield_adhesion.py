@@ -115,3 +115,27 @@ def test_threads_bitwise_equal_to_serial(reference):
     b = pf.solve_contact(SURF, p, parallel=None, **kw)
     for name in ("area", "plastic_area", "error_estimate", "status", "sigma_a"):
         np.testing.assert_array_equal(getattr(a, name), getattr(b, name))
+
+
+@pytest.mark.parametrize("hardness, rtols, ref_rtol", [
+    (300e6, (1e-4,), 1e-6),
+    pytest.param("soft", (1e-4, 1e-6), 1e-7, marks=pytest.mark.slow)])
+def test_seed_scene_near_the_detachment_wall(hardness, rtols, ref_rtol):
+    """The seed scene with adhesion at p_nom = 0 and 1 MPa: the start sits ~1 MPa from the
+    detachment wall in a strip 300 MPa wide (status 3, START_UNRESOLVED, before). The wall
+    recedes faster than the distribution spreads, so the free start lasts; now OK, within
+    rtol of a tighter solution (measured <= 0.25 rtol at rtol 1e-3 ... 1e-6 against rtol
+    1e-7), the estimate covering the error (measured 1.7-12x). (At rtol 1e-7 the 300 MPa
+    scene needs more than the work cap and is flagged GRID_CAP.)"""
+    surface, e_star = pf.seed_scene(), pf.seed_e_star()
+    h = pf.hardness_power_law(150e6, 0.15) if hardness == "soft" else hardness
+    p = np.array([0.0, 1e6])
+    kw = dict(e_star=e_star, work_of_adhesion=pf.SEED_WORK_OF_ADHESION, hardness=h)
+    ref = pf.solve_contact(surface, p, rtol=ref_rtol, **kw)
+    assert np.all(ref.status == 0), ref.message
+    for rtol in rtols:
+        res = pf.solve_contact(surface, p, rtol=rtol, **kw)
+        assert np.all(res.status == 0), res.message
+        err = _contract(res, ref.area, rtol)
+        assert np.all(res.error_estimate >= 0.5 * err)
+        assert np.all(res.plastic_area > 0.05)

@@ -32,7 +32,8 @@ a step, the central differences satisfy sum_j sigma_j (L p)_j h = (outflow terms
 at the start (implicit Euler) the frame motion's term cancels exactly over the step.
 
 Start: an exact solution at a small G_s. Either the free Gaussian N(sigma - sigma0; 2 G_s),
-while both walls stay >= K_FAR standard deviations away over [0, G_s], or the exact density of
+while both walls stay out of its reach (a reflection-principle bound of the probability of
+having reached either wall by G_s <= TAIL_TOL each, :func:`_far_limit`), or the exact density of
 the nearer wall alone moving linearly (:func:`linear_wall_density`), while that wall is still
 on its first linear stretch and the far wall stays K_FAR standard deviations away: a start
 next to one wall does not force a narrow start (and a huge grid). Outputs at G <= G_s are the
@@ -69,6 +70,7 @@ from .tridiag import thomas
 # --- constants of the scheme (lengths in units of W0, diffusion times in W0^2) -----------
 N_DAMP = 1              # default implicit-Euler half-step pairs at the start of each run
 K_FAR = 8.0             # a wall ignored by the start stays this many start std away
+TAIL_TOL = math.erfc(K_FAR / math.sqrt(2.0))  # the hit probability that allows (1.2e-15)
 N_BASE = 60             # coarse intervals across the strip at level 0 (LEVEL0_SCALE)
 RTOL_SCALE = 0.5        # resolution at rtol = 1e-6 in units of the constants here: measured
                         # errors 0.003-0.01 rtol at 1 (translating walls, rtol 1e-3..1e-8), so
@@ -143,7 +145,7 @@ def _min_gap(G_k, dist_k, g):
 
 
 @njit_serial
-def _far_limit(G_k, dist_k, g_hi):
+def _far_limit_min(G_k, dist_k, g_hi):
     """Largest g <= g_hi with min over [0, g] of the distance >= K_FAR sqrt(2 g)."""
     if _min_gap(G_k, dist_k, g_hi) >= K_FAR * math.sqrt(2.0 * g_hi):
         return g_hi
@@ -156,6 +158,64 @@ def _far_limit(G_k, dist_k, g_hi):
         else:
             hi = mid
     return lo
+
+
+@njit_serial
+def _hit_bound(d, g):
+    """Reflection-principle bound of the probability that the free diffusion from the start
+    (variance 2 g at time g) has come a distance d away by time g: erfc(d / (2 sqrt g))."""
+    if g <= 0.0:
+        return 0.0
+    if d <= 0.0:
+        return 1.0
+    return math.erfc(d / (2.0 * math.sqrt(g)))
+
+
+@njit_serial
+def _far_limit_pieces(G_k, dist_k, g_hi):
+    """Largest g <= g_hi for which the sum over the schedule's pieces of the hit bounds (the
+    piece's least distance against the spread at the piece's end) stays <= TAIL_TOL."""
+    acc = 0.0
+    n = G_k.shape[0]
+    for k in range(1, n):
+        g0 = G_k[k - 1]
+        g1 = G_k[k]
+        if g1 <= g0:
+            continue
+        if g0 >= g_hi:
+            return g_hi
+        ge = g1 if g1 < g_hi else g_hi
+        t = _hit_bound(min(dist_k[k - 1], _wall_at(G_k, dist_k, k, ge)), ge)
+        if acc + t <= TAIL_TOL:
+            acc += t
+            if ge >= g_hi:
+                return g_hi
+            continue
+        lo = g0
+        hi = ge
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            if acc + _hit_bound(min(dist_k[k - 1], _wall_at(G_k, dist_k, k, mid)),
+                                mid) <= TAIL_TOL:
+                lo = mid
+            else:
+                hi = mid
+        return lo
+    return g_hi
+
+
+@njit_serial
+def _far_limit(G_k, dist_k, g_hi):
+    """Largest g <= g_hi until which the wall at distance dist_k (from the start) is out of
+    the free diffusion's reach, to a probability <= TAIL_TOL: the larger of two rigorous
+    bounds, the least distance over [0, g] against the spread at g (tight for a wall
+    approaching), and the sum over the schedule's pieces of each piece's least distance
+    against the spread at its end (tight for a wall running away, as a detachment wall does
+    at low pressure: the first bound then waits for the spread at g to pass the distance
+    at G = 0)."""
+    a = _far_limit_min(G_k, dist_k, g_hi)
+    b = _far_limit_pieces(G_k, dist_k, g_hi)
+    return a if a > b else b
 
 
 @njit_serial
