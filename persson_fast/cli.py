@@ -124,12 +124,15 @@ def _cmd_figure2(args) -> int:
     t_start = time.perf_counter()
     res = pf.solve_contact(surface, pressure, e_star=e_star, method="auto", rtol=args.rtol)
     t_auto = time.perf_counter() - t_start
-    t0 = time.perf_counter()
-    res_cn = pf.solve_contact(surface, pressure, e_star=e_star, method="cn", rtol=args.rtol)
-    t_cn = time.perf_counter() - t0
-    diff = float(np.max(np.abs(res.area - res_cn.area)))
+    # the closed form is exact here; the grid solver only checks it, on request (--check),
+    # so that the main job compiles only the adhesive kernels it needs
+    res_cn, t_cn = None, 0.0
+    if args.check:
+        t0 = time.perf_counter()
+        res_cn = pf.solve_contact(surface, pressure, e_star=e_star, method="cn", rtol=args.rtol)
+        t_cn = time.perf_counter() - t0
     for label, r in (("auto", res), ("cn", res_cn)):
-        if not r.success:
+        if r is not None and not r.success:
             print(f"  warning ({label}): {r.message}")
 
     t0 = time.perf_counter()
@@ -147,9 +150,14 @@ def _cmd_figure2(args) -> int:
     t_pull = time.perf_counter() - t0
     t_total = time.perf_counter() - t_start
 
-    print(f"A/A0 at {SEED_P_MAX / 1e6:g} MPa without adhesion: {res.area[-1]:.6g} "
-          f"(method {res.method!r}; 'cn' gives {res_cn.area[-1]:.6g})")
-    print(f"largest |A_auto - A_cn| over the pressures: {diff:.3g}")
+    if res_cn is None:
+        print(f"A/A0 at {SEED_P_MAX / 1e6:g} MPa without adhesion: {res.area[-1]:.6g} "
+              f"(method {res.method!r}; --check also solves it with the grid solver 'cn')")
+    else:
+        diff = float(np.max(np.abs(res.area - res_cn.area)))
+        print(f"A/A0 at {SEED_P_MAX / 1e6:g} MPa without adhesion: {res.area[-1]:.6g} "
+              f"(method {res.method!r}; 'cn' gives {res_cn.area[-1]:.6g})")
+        print(f"largest |A_auto - A_cn| over the pressures: {diff:.3g}")
     print(f"A/A0 with adhesion (Delta gamma = {SEED_WORK_OF_ADHESION:g} J/m^2): "
           f"{area_adh[0]:.6g} at 0 MPa, {area_adh[-1]:.6g} at {SEED_P_MAX / 1e6:g} MPa "
           f"(fixed point: {int(res_adh.iterations.max())} iterations at most; sticky: "
@@ -184,9 +192,11 @@ def _cmd_figure2(args) -> int:
         if os.path.exists(png_path):
             print(f"note: {png_path} is left from an earlier run; it does not show this one")
 
-    compile_s = sum(r.timings.get("compile", 0.0) for r in (res, res_cn, res_adh))
-    timing = (f"time: {t_total + t_pull:.3g} s (auto {t_auto:.3g} s, cn {t_cn:.3g} s, "
-              f"adhesion {t_adh:.3g} s, pull-off {t_pull:.3g} s)")
+    compile_s = sum(r.timings.get("compile", 0.0) for r in (res, res_cn, res_adh)
+                    if r is not None)
+    timing = (f"time: {t_total:.3g} s (auto {t_auto:.3g} s, "
+              + (f"cn {t_cn:.3g} s, " if res_cn is not None else "")
+              + f"adhesion {t_adh:.3g} s, pull-off {t_pull:.3g} s)")
     print(timing)
     if compile_s > 0:
         print(f"compile time (included above): {compile_s:.3g} s")

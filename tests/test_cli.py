@@ -9,6 +9,7 @@ Kept fast: few pressures, ``--rtol 1e-3``, adhesion only where a test needs it.
 """
 import csv
 import os
+import re
 import pathlib
 import signal
 import stat
@@ -96,6 +97,35 @@ def test_figure2_writes_csv_and_png(tmp_path, capsys):
     np.testing.assert_allclose(force[1:] * col["area_adhesion"][1:], col["pressure_Pa"][1:],
                                rtol=1e-12)
     assert np.all(col["compression_per_contact_area_adhesion_Pa"] > force)
+
+
+def _timing(text):
+    """The parts and the total of figure2's 'time:' line [s]."""
+    line = next(ln for ln in text.splitlines() if ln.startswith("time: "))
+    total = float(line.split()[1])
+    parts = dict((name, float(v)) for name, v in re.findall(r"([a-z-]+) ([0-9.e+-]+) s", line))
+    return total, parts
+
+
+def test_figure2_checks_the_closed_form_only_on_request(tmp_path, capsys):
+    """The closed form is exact for the scene without adhesion: the grid solver (and its
+    compile) runs only with --check, which prints the comparison. The time line's total is
+    the wall time once (it added the pull-off twice before; the printed figures have three
+    digits)."""
+    assert figure2(tmp_path / "a", 3, "--no-plot") == 0
+    text = capsys.readouterr().out
+    assert "--check also solves it with the grid solver 'cn'" in text
+    assert "A_cn" not in text
+    total, parts = _timing(text)
+    assert "cn" not in parts and {"auto", "adhesion", "pull-off"} <= set(parts)
+    assert 0.99 * sum(parts.values()) <= total <= 1.05 * sum(parts.values()) + 0.05
+    assert figure2(tmp_path / "b", 3, "--no-plot", "--check") == 0
+    text = capsys.readouterr().out
+    diff = float(re.search(r"largest \|A_auto - A_cn\| over the pressures: (\S+)", text)[1])
+    assert diff <= 1e-3 * 0.1        # rtol 1e-3 of areas below 0.1 (at most 100 MPa)
+    total, parts = _timing(text)
+    assert "cn" in parts
+    assert 0.99 * sum(parts.values()) <= total <= 1.05 * sum(parts.values()) + 0.05
 
 
 def test_figure2_columns_are_documented(capsys):
