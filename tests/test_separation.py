@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from scipy import integrate, special
 
@@ -104,6 +104,8 @@ def test_doubled_nodes_agree(name, gamma):
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(hurst=st.floats(0.3, 1.0), decades=st.floats(0.4, 7.0), rolloff=st.floats(0.0, 1.0),
        gamma=st.sampled_from([1.0, 0.45, 0.1]), log_p=st.floats(-3.0, 1.5))
+# p = 10 sqrt(G1): a ln G level just below q1 left the panel before it unrefined (8.9e-10)
+@example(hurst=0.5, decades=1.0, rolloff=0.0, gamma=1.0, log_p=1.0)
 def test_doubled_nodes_agree_on_random_self_affine_scenes(hurst, decades, rolloff, gamma, log_p):
     q0 = 1e5
     q1 = q0 * 10 ** decades
@@ -119,6 +121,32 @@ def test_doubled_nodes_agree_on_random_self_affine_scenes(hurst, decades, rollof
     np.testing.assert_allclose(u1[keep], u2[keep], rtol=QUAD_RTOL)
     np.testing.assert_allclose(k1[keep], k2[keep], rtol=QUAD_RTOL)
     np.testing.assert_allclose(e1, e2, rtol=QUAD_RTOL)
+
+
+@pytest.mark.parametrize("hurst, decades, rolloff", [
+    (0.5, 1.0, 0.0), (0.7062326701907955, 2.371394476604889, 0.6719948779563594)])
+def test_layer_at_q1_is_resolved_at_large_pressure(hurst, decades, rolloff):
+    """At large p, u comes from a layer at q1 whose width in ln q shrinks like 4 G1 / p^2;
+    the dyadic panels toward q1 must cover it whatever edge lies just below q1. Against a
+    rule with three times the nodes per panel, four times the panels and a quarter of the
+    ln G step, p up to 40 sqrt(G1): below 1e-12 (before: 8.9e-10 at 10 sqrt(G1) on the first
+    scene, 0.43 at 40 sqrt(G1) on the second, status 0)."""
+    q0 = 1e5
+    q1 = q0 * 10 ** decades
+    surface = pf.SelfAffine(hurst=hurst, q0=q0, q1=q1,
+                            q_r=q0 * (q1 / q0) ** (0.5 * rolloff) if rolloff else None,
+                            h_rms=1e-7)
+    e = 1e9
+    p = math.sqrt(surface.diffusion_time(q1, e)) * np.geomspace(1.0, 40.0, 25)
+    fine = {"PANEL_NODES": 30, "TAU_PANEL_NODES": 20, "PANELS_PER_DECADE": 8,
+            "LN_G_STEP": 0.25, "Q1_LEVELS": 32}
+    for gamma in (1.0, 0.45):
+        u1, k1, _ = _with_nodes({}, surface, e, p, gamma)
+        u2, k2, _ = _with_nodes(fine, surface, e, p, gamma)
+        keep = u2 > 1e-290
+        assert keep.sum() >= 20
+        np.testing.assert_allclose(u1[keep], u2[keep], rtol=1e-12)
+        np.testing.assert_allclose(k1[keep], k2[keep], rtol=1e-12)
 
 
 def test_full_contact_energy_is_the_closed_form():
