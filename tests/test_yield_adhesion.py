@@ -2,6 +2,7 @@
 inside, Eqs. 8-9 on the elastic contact area."""
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings, strategies as hs
 
 import persson_fast as pf
 from persson_fast._kernels.status import LOST_CONTACT
@@ -139,3 +140,21 @@ def test_seed_scene_near_the_detachment_wall(hardness, rtols, ref_rtol):
         err = _contract(res, ref.area, rtol)
         assert np.all(res.error_estimate >= 0.5 * err)
         assert np.all(res.plastic_area > 0.05)
+
+
+@settings(max_examples=12, deadline=None)
+@given(p_frac=hs.floats(-0.05, 0.5), h_frac=hs.floats(0.5, 3.0), n=hs.sampled_from([0.0, 0.15, 0.3]),
+       dgamma=hs.floats(0.02, 0.4))
+def test_bookkeeping_with_adhesion_property(p_frac, h_frac, n, dgamma):
+    """Random pressures (tension included), hardness (constant or rising as zeta^n) and work
+    of adhesion: A_el + A_pl + D = 1 and load + plastic_load - detached_load = p_nom, both
+    to 1e-10 (of 1 and of the stress scale), wherever the contact is not separated."""
+    p = np.array([p_frac * H0])
+    h = h_frac * H0 if n == 0.0 else pf.hardness_power_law(h_frac * H0, n)
+    res = pf.solve_contact(SURF, p, e_star=E, work_of_adhesion=dgamma, hardness=h, rtol=1e-4)
+    assume(res.area[0] > 0.0)
+    total = res.elastic_area + res.plastic_area + res.detached_area
+    np.testing.assert_allclose(total, 1.0, rtol=0, atol=1e-10)
+    scale = np.max(np.abs([p, res.load, res.plastic_load, res.detached_load]), axis=0)
+    gap = np.abs(res.load + res.plastic_load - res.detached_load - p)
+    assert np.all(gap <= 1e-10 * scale), gap / scale
