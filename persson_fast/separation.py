@@ -48,9 +48,10 @@ gamma_S = 0.45): relative error of u, K and U_el below 2e-13 (tests/test_separat
 holds it to 1e-10); against this rule with three times the nodes per panel, four times the
 panels and a quarter of the ln G step, 130 random self-affine scenes (0.05 to 7 decades,
 with and without roll-off), p from 1e-3 to 40 sqrt(G1): below 8e-14 from 0.4 decades up,
-1.2e-9 on a 0.33-decade scene at 40 sqrt(G1) (u ~ 1e-187 m). The accuracy does not depend on ``rtol``. Pressures below
-``pressure_floor`` (where the tau levels end before the stress distribution has left the
-node nearest q0; ~1e-11 sqrt(G(q_a)), far below any load of interest) are flagged.
+1.2e-9 on a 0.33-decade scene at 40 sqrt(G1) (u ~ 1e-187 m). The accuracy does not depend on
+``rtol``. Pressures below ``pressure_floor`` (where the tau levels end before the stress
+distribution has left the node nearest q0; ~1e-11 sqrt(G(q_a)), far below any load of
+interest) are flagged.
 """
 from __future__ import annotations
 
@@ -245,7 +246,7 @@ def separation_nodes(surface, e_star: float) -> SeparationNodes:
     wt = ((hi - lo)[:, None] * wt_g[None, :]).ravel()
     delta = span * tau * tau
     w_delta = 2.0 * span * tau * wt                               # d delta = 2 span tau d tau
-    # --- main ln q panels (the last one refined dyadically toward q1) ------------------------
+    # --- main ln q panels, refined dyadically toward q1 -----------------------------------------
     if i_tau < edges.size - 1:
         # the dyadic cuts toward q1 are measured from the widest panel width of the main
         # grid, not from the last panel's: an edge just below q1 (a ln G level, a breakpoint)

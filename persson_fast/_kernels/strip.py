@@ -17,26 +17,27 @@ p = w P, obeys p_G = (1/w^2) p_yy - d/dy (v p) with the frame velocity v = (sigm
 Space: conservative central differences on y_j = j/n, p = 0 at both walls. The wall speeds are
 the secants of their pieces (the schedule samples, kinks included, are step boundaries).
 Time: Crank-Nicolson with the operator at the step's midpoint (the implicit midpoint rule);
-the first ``n_damp`` steps are two implicit-Euler half steps each, their operator at the start
-of the half step (Rannacher start), and so are the first ``n_damp`` steps after a kink of a wall (its speed
-jumps by more than KINK_JUMP: the sudden change of the boundary's speed excites grid-scale
-modes, which Crank-Nicolson carries on with a factor near -1 per step). Steps grow
-geometrically from the start (dt = REL_STEP G), capped at MAX_STEP w^2 and by the wall travel
-per step (a fraction 1/N_WIDTH of the profile width sqrt(2G)). The absorbed areas are the
-discrete boundary fluxes integrated by the trapezoid rule, so that A_el + A_pl + D = 1 holds
+the first ``n_damp`` steps are two implicit-Euler half steps each, their operator at the
+start of the half step (Rannacher start), and so are the first ``n_damp`` steps after a kink
+of a wall (its speed jumps by more than KINK_JUMP: the sudden change of the boundary's speed
+excites grid-scale modes, which Crank-Nicolson carries on with a factor near -1 per step).
+Steps grow geometrically from the start (dt = REL_STEP G), capped at MAX_STEP w^2 and by the
+wall travel per step (a fraction 1/N_WIDTH of the profile width sqrt(2G)). The absorbed areas
+are the discrete boundary fluxes integrated over each step, so that A_el + A_pl + D = 1 holds
 to rounding; the absorbed loads are the fluxes times the walls' stresses at the time the
 step's operator is taken at, and the load balance L + plastic_load - detached_load = sigma0
-holds to rounding too. Why: the node stresses sigma_j = y_j w - sigma_a are linear in G within
-a step, the central differences satisfy sum_j sigma_j (L p)_j h = (outflow terms at the walls)
-- sum_j sigma_j' p_j h at any one G, and with the operator at the midpoint (Crank-Nicolson) or
-at the start (implicit Euler) the frame motion's term cancels exactly over the step.
+holds to rounding too. Why: the node stresses sigma_j = y_j w - sigma_a are linear in G
+within a step, the central differences satisfy sum_j sigma_j (L p)_j h = (outflow terms at
+the walls) - sum_j sigma_j' p_j h at any one G, and with the operator at the midpoint
+(Crank-Nicolson) or at the start (implicit Euler) the frame motion's term cancels exactly
+over the step.
 
 Start: an exact solution at a small G_s. Either the free Gaussian N(sigma - sigma0; 2 G_s),
 while both walls stay out of its reach (a reflection-principle bound of the probability of
-having reached either wall by G_s <= TAIL_TOL each, :func:`_far_limit`), or the exact density of
-the nearer wall alone moving linearly (:func:`linear_wall_density`), while that wall is still
-on its first linear stretch and the far wall stays K_FAR standard deviations away: a start
-next to one wall does not force a narrow start (and a huge grid). Outputs at G <= G_s are the
+having reached either wall by G_s <= TAIL_TOL each, :func:`_far_limit`), or the exact
+density of the nearer wall alone moving linearly (:func:`linear_wall_density`), while that
+wall is still on its first linear stretch and the far wall stays out of reach: a start next
+to one wall does not force a narrow start (and a huge grid). Outputs at G <= G_s are the
 start family's exact values. The start profile is sampled at the nodes; what its discrete
 area misses (O(h^2) next to a wall) is booked as absorbed by the nearer wall, at the value
 that keeps the load balance exact.
@@ -317,16 +318,23 @@ def _assemble(w, sa_dot, w_dot, h, n, c, lo, di, up):
 
 
 @njit_serial
-def _explicit(p, w, sa_dot, w_dot, h, n, c, rhs):
-    """rhs = (I + c L) p on the interior nodes (p holds all n+1 nodes, zero at the ends)."""
+def _crank_nicolson(p, w, sa_dot, w_dot, h, n, c, lo, di, up, rhs):
+    """The Crank-Nicolson system of one step with the operator L at width w: (I - c L) on the
+    interior nodes into lo, di, up (as :func:`_assemble`) and rhs = (I + c L) p (p holds all
+    n+1 nodes, zero at the ends), in one pass; returns the outflow coefficients."""
     d = 1.0 / (w * w)
     dh = d / h
     for j in range(1, n):
         vm = (sa_dot - (j - 0.5) * h * w_dot) / w
         vp = (sa_dot - (j + 0.5) * h * w_dot) / w
-        lp = ((dh + 0.5 * vm) * p[j - 1] - (2.0 * dh + 0.5 * (vp - vm)) * p[j]
-              + (dh - 0.5 * vp) * p[j + 1]) / h
-        rhs[j - 1] = p[j] + c * lp
+        a = (dh + 0.5 * vm) / h
+        b = (2.0 * dh + 0.5 * (vp - vm)) / h
+        e = (dh - 0.5 * vp) / h
+        i = j - 1
+        lo[i] = -c * a
+        di[i] = 1.0 + c * b
+        up[i] = -c * e
+        rhs[i] = p[j] + c * (a * p[j - 1] - b * p[j] + e * p[j + 1])
     v_lo = (sa_dot - 0.5 * h * w_dot) / w
     v_up = (sa_dot - (n - 0.5) * h * w_dot) / w
     return dh - 0.5 * v_lo, dh + 0.5 * v_up
@@ -407,13 +415,13 @@ def _march(G_k, sa_k, sy_k, gs, piece, rec, k_first, n_sub, n_damp, n, kind, sig
             g0 = ga + (gb - ga) * s / n_sub
             g1 = gb if s == n_sub - 1 else ga + (gb - ga) * (s + 1) / n_sub
             dt = g1 - g0
-            sa0 = _wall_at(G_k, sa_k, k, g0)
-            sy0 = _wall_at(G_k, sy_k, k, g0)
+            gm = 0.5 * (g0 + g1)
+            sam = _wall_at(G_k, sa_k, k, gm)
+            sym = _wall_at(G_k, sy_k, k, gm)
             if damp_left > 0:
                 damp_left -= 1
-                gm = 0.5 * (g0 + g1)
-                sam = _wall_at(G_k, sa_k, k, gm)
-                sym = _wall_at(G_k, sy_k, k, gm)
+                sa0 = _wall_at(G_k, sa_k, k, g0)
+                sy0 = _wall_at(G_k, sy_k, k, g0)
                 for half in range(2):
                     # the operator at the start of the half step: with the nodes' stresses
                     # linear in G, sum sigma_j(G_b) p_b - sum sigma_j(G_a) p_a is then exactly
@@ -437,13 +445,10 @@ def _march(G_k, sa_k, sy_k, gs, piece, rec, k_first, n_sub, n_damp, n, kind, sig
                 # rule): the load moment changes by exactly dt/2 times the walls' midpoint
                 # stresses times their outflows at both ends of the step
                 c = 0.5 * dt
-                gm = 0.5 * (g0 + g1)
-                sam = _wall_at(G_k, sa_k, k, gm)
-                sym = _wall_at(G_k, sy_k, k, gm)
-                o_lo, o_up = _explicit(p, sam + sym, sa_dot, w_dot, h, n, c, rhs)
+                o_lo, o_up = _crank_nicolson(p, sam + sym, sa_dot, w_dot, h, n, c, lo, di, up,
+                                             rhs)
                 q_lo = p[1]
                 q_up = p[n - 1]
-                _assemble(sam + sym, sa_dot, w_dot, h, n, c, lo, di, up)
                 thomas(lo[:n_in], di[:n_in], up[:n_in], rhs[:n_in], scratch[:n_in], p[1:n])
                 f_lo = c * o_lo * (q_lo + p[1])
                 f_up = c * o_up * (q_up + p[n - 1])
