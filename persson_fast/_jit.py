@@ -53,19 +53,31 @@ def _hash_files(key):
     return h.hexdigest()
 
 
-def kernel_source_stamp() -> str:
-    """A hash of the source of every file with compiled code in the package.
-
-    numba's disk cache checks only the source file of the cached function itself, so a
-    cached sweep kernel would keep running an old version of the solver it calls from another
-    file (after an upgrade or an edit). The package's cache entries carry this stamp instead,
-    so a change to any kernel file invalidates them all.
-    """
+def _current_stamp() -> str:
     key = []
     for path in _kernel_paths():
         st = os.stat(path)
         key.append((str(path), st.st_mtime_ns, st.st_size))
     return _hash_files(tuple(key))
+
+
+def kernel_source_stamp() -> str:
+    """A hash of the source of every file with compiled code in the package, as this process
+    found it when it imported the package.
+
+    numba's disk cache checks only the source file of the cached function itself, so a
+    cached sweep kernel would keep running an old version of the solver it calls from another
+    file (after an upgrade or an edit). The package's cache entries carry this stamp instead,
+    so a change to any kernel file invalidates them all. The stamp is taken once, when this
+    module is imported: a module imported later (``persson_fast.embed`` is imported on
+    demand) compiles against the kernels already in memory, and labelling that code with the
+    hash of files changed on disk since (an upgrade under a running session) would make a
+    later process load the old code as current.
+    """
+    return _IMPORT_STAMP
+
+
+_IMPORT_STAMP = _current_stamp()
 
 
 class _PackageStamp:
