@@ -143,7 +143,8 @@ def test_seed_scene_near_the_detachment_wall(hardness, rtols, ref_rtol):
 
 
 @settings(max_examples=12, deadline=None)
-@given(p_frac=hs.floats(-0.05, 0.5), h_frac=hs.floats(0.5, 3.0),
+# (normal numbers only: below the smallest normal double the balance has no relative digits)
+@given(p_frac=hs.floats(-0.05, 0.5, allow_subnormal=False), h_frac=hs.floats(0.5, 3.0),
        n=hs.sampled_from([0.0, 0.15, 0.3]), dgamma=hs.floats(0.02, 0.4))
 def test_bookkeeping_with_adhesion_property(p_frac, h_frac, n, dgamma):
     """Random pressures (tension included), hardness (constant or rising as zeta^n) and work
