@@ -1,4 +1,6 @@
-"""Weak adhesion: gamma_eff changes sign in the last cells before zeta1.
+"""Adhesive scenes found by random probing (``python -m benchmarks.adhesion_probe``).
+
+Weak adhesion: gamma_eff changes sign in the last cells before zeta1.
 
 There sigma_a = c sqrt(gamma_eff) starts with an infinite slope and races into the
 distribution just before the end; the fixed point amplifies the diffusion solves' errors
@@ -43,3 +45,20 @@ def test_onset_before_zeta1_within_rtol(name):
     assert res.status[0] == 0, res.message
     assert err <= c["rtol"] * refs[1]
     assert err <= res.error_estimate[0] <= 10 * err
+
+
+@pytest.mark.xfail(strict=True, reason=(
+    "known: in tension with moderate adhesion, random probing (benchmarks/adhesion_probe.py) "
+    "finds about 0.4 % of rows 1-2.8 rtol off with status 0; here the solutions at rtol "
+    "4e-6 and 4e-7 differ by 5x the looser one's tolerance, each with an estimate far "
+    "below that (the fixed point's solution moves with the tolerance; not yet understood)"))
+def test_tension_results_agree_across_tolerances():
+    s = pf.SelfAffine(hurst=0.5572021812003338, q0=160327.29244919273,
+                      q1=160327.29244919273 * 10 ** 3.4231316182156704,
+                      h_rms=9.541910010634932e-09)
+    kw = dict(e_star=309221691.3732101, work_of_adhesion=0.011796651584371015)
+    p = np.array([-81579.70296864415])
+    loose = pf.solve_contact(s, p, rtol=3.96e-6, **kw)
+    tight = pf.solve_contact(s, p, rtol=3.96e-7, **kw)
+    assert loose.status[0] == 0 and tight.status[0] == 0
+    assert abs(loose.area[0] - tight.area[0]) <= 3.96e-6 * tight.area[0]
