@@ -234,9 +234,9 @@ class _ZetaLadder:
         # from full contact), level 2 from level 1's profile interpolated
         self.levels = [None, None]
         self._solve_level(1, rows, start)
-        # a sign change of gamma_eff: the level again with the tighter diffusion tolerance,
-        # from its own profile (CROSSING_INNER_DIV)
-        cross = np.array([self.levels[1][1][r] == 0 and self._late_crossing(1, r)
+        # a late sign change of gamma_eff: the level again with the tighter diffusion
+        # tolerance, from its own profile (CROSSING_LATE, CROSSING_INNER_DIV)
+        cross = np.array([self.levels[1][1][r] == 0 and self._late_crossing(r)
                           for r in rows], dtype=bool)
         if cross.any():
             again = rows[cross]
@@ -296,10 +296,10 @@ class _ZetaLadder:
         g = self.levels[k][0][2][r]
         return bool(np.any((g[:-1] > 0) != (g[1:] > 0)))
 
-    def _late_crossing(self, k, r):
-        """Row r's gamma_eff on level k changes sign in a cell ending at G >= CROSSING_LATE G1
-        (level 1 only: its diffusion times are kept)."""
-        g = self.levels[k][0][2][r]
+    def _late_crossing(self, r):
+        """Row r's gamma_eff on level 1 changes sign in a cell ending at G >= CROSSING_LATE G1
+        (level 1: the one whose diffusion times are kept)."""
+        g = self.levels[1][0][2][r]
         cells = np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
         return bool(cells.size and self.G_dim[cells[-1] + 1] >= CROSSING_LATE * self.G_dim[-1])
 
