@@ -18,9 +18,7 @@ which is how line coverage is measured honestly.
 """
 from __future__ import annotations
 
-import functools
 import hashlib
-import os
 from pathlib import Path
 
 import numba
@@ -44,21 +42,12 @@ def _kernel_paths():
     return out
 
 
-@functools.lru_cache(maxsize=8)
-def _hash_files(key):
-    h = hashlib.sha256()
-    for path, _, _ in key:
-        h.update(path.encode())
-        h.update(Path(path).read_bytes())
-    return h.hexdigest()
-
-
 def _current_stamp() -> str:
-    key = []
+    h = hashlib.sha256()
     for path in _kernel_paths():
-        st = os.stat(path)
-        key.append((str(path), st.st_mtime_ns, st.st_size))
-    return _hash_files(tuple(key))
+        h.update(str(path).encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
 
 
 def kernel_source_stamp() -> str:

@@ -292,22 +292,24 @@ class _ZetaLadder:
         est = np.where(vanishing, np.minimum(est + inner, a2), est + inner)
         return est, split, area
 
-    def _has_crossing(self, k, r):
+    def _crossing_cells(self, k, r):
+        """The cells of level k where row r's gamma_eff changes sign."""
         g = self.levels[k][0][2][r]
-        return bool(np.any((g[:-1] > 0) != (g[1:] > 0)))
+        return np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
+
+    def _has_crossing(self, k, r):
+        return self._crossing_cells(k, r).size > 0
 
     def _late_crossing(self, r):
         """Row r's gamma_eff on level 1 changes sign in a cell ending at G >= CROSSING_LATE G1
         (level 1: the one whose diffusion times are kept)."""
-        g = self.levels[1][0][2][r]
-        cells = np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
+        cells = self._crossing_cells(1, r)
         return bool(cells.size and self.G_dim[cells[-1] + 1] >= CROSSING_LATE * self.G_dim[-1])
 
     def _crossing_resolved(self, k, r):
         """Level k resolves every sign change of row r's gamma_eff with cells of at most
         1/CROSSING_MIN_PER_DECADE decade (ladders coarser there are not yet asymptotic)."""
-        g = self.levels[k][0][2][r]
-        cells = np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
+        cells = self._crossing_cells(k, r)
         if cells.size == 0:
             return True
         z = self.grids[k]
@@ -452,34 +454,24 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
             far = yield_wall_reach(G_dim, p[rows], sy) <= FAR_MASS
             sy[far] = np.inf
             sy = sy / scale
-        # one call per diffusion tolerance (the rows of a sign change of gamma_eff take a
-        # tighter one); a pressure's result does not depend on the others in its call
-        parts = []
+        # one call per diffusion tolerance (the rows of a late sign change of gamma_eff take
+        # a tighter one); a pressure's result does not depend on the others in its call
+        outs = None
+        status = np.zeros(rows.size, dtype=np.int64)
+        iterations = np.zeros(rows.size, dtype=np.int64)
+        residual = np.zeros(rows.size)
         for div in np.unique(inner_div):
             sel = np.flatnonzero(inner_div == div)
-            every = sel.size == rows.size
-            part = _run(G, c, wa, wb, gamma_s, p[rows][sel] / scale, rtol / div, parallel,
-                        ctl, None if x_init is None else (x_init if every else x_init[sel]),
-                        variant, onset, theory_code, theory_g,
-                        None if sy is None else (sy if every else sy[sel]))
-            parts.append((sel, part))
-        if len(parts) == 1:
-            outs, status, iterations, residual, tim = parts[0][1]
-        else:
-            n_out = len(parts[0][1][0])
-            outs = [np.zeros((rows.size, grid.size)) for _ in range(n_out)]
-            status = np.zeros(rows.size, dtype=np.int64)
-            iterations = np.zeros(rows.size, dtype=np.int64)
-            residual = np.zeros(rows.size)
-            tim = {}
-            for sel, (o_p, st_p, it_p, res_p, t_p) in parts:
-                for full, o in zip(outs, o_p):
-                    full[sel] = o
-                status[sel], iterations[sel], residual[sel] = st_p, it_p, res_p
-                for key, val in t_p.items():
-                    tim[key] = tim.get(key, 0.0) + val
-        for key, val in tim.items():
-            timings[key] = timings.get(key, 0.0) + val
+            o_p, status[sel], iterations[sel], residual[sel], tim = _run(
+                G, c, wa, wb, gamma_s, p[rows][sel] / scale, rtol / div, parallel, ctl,
+                None if x_init is None else x_init[sel], variant, onset, theory_code,
+                theory_g, None if sy is None else sy[sel])
+            if outs is None:
+                outs = [np.zeros((rows.size, grid.size)) for _ in o_p]
+            for full, o in zip(outs, o_p):
+                full[sel] = o
+            for key, val in tim.items():
+                timings[key] = timings.get(key, 0.0) + val
         outs = [o * (scale if k in (1, 4, 6, 9) else 1.0) for k, o in enumerate(outs)]
         return outs, status, iterations, residual, G_dim
 

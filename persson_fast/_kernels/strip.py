@@ -319,25 +319,16 @@ def _assemble(w, sa_dot, w_dot, h, n, c, lo, di, up):
 
 @njit_serial
 def _crank_nicolson(p, w, sa_dot, w_dot, h, n, c, lo, di, up, rhs):
-    """The Crank-Nicolson system of one step with the operator L at width w: (I - c L) on the
-    interior nodes into lo, di, up (as :func:`_assemble`) and rhs = (I + c L) p (p holds all
-    n+1 nodes, zero at the ends), in one pass; returns the outflow coefficients."""
-    d = 1.0 / (w * w)
-    dh = d / h
+    """The Crank-Nicolson system of one step with the operator L at width w: M = I - c L
+    into lo, di, up (:func:`_assemble`) and rhs = (I + c L) p = 2 p - M p, from the same
+    coefficients (p holds all n+1 nodes, zero at the ends; the exact load balance needs the
+    explicit and the implicit half of the step to share L); returns the outflow
+    coefficients."""
+    out = _assemble(w, sa_dot, w_dot, h, n, c, lo, di, up)
     for j in range(1, n):
-        vm = (sa_dot - (j - 0.5) * h * w_dot) / w
-        vp = (sa_dot - (j + 0.5) * h * w_dot) / w
-        a = (dh + 0.5 * vm) / h
-        b = (2.0 * dh + 0.5 * (vp - vm)) / h
-        e = (dh - 0.5 * vp) / h
         i = j - 1
-        lo[i] = -c * a
-        di[i] = 1.0 + c * b
-        up[i] = -c * e
-        rhs[i] = p[j] + c * (a * p[j - 1] - b * p[j] + e * p[j + 1])
-    v_lo = (sa_dot - 0.5 * h * w_dot) / w
-    v_up = (sa_dot - (n - 0.5) * h * w_dot) / w
-    return dh - 0.5 * v_lo, dh + 0.5 * v_up
+        rhs[i] = (2.0 - di[i]) * p[j] - lo[i] * p[j - 1] - up[i] * p[j + 1]
+    return out
 
 
 @njit_serial
