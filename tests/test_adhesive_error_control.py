@@ -105,11 +105,13 @@ def test_seed_estimate_calibrated():
 
 @pytest.mark.slow
 def test_tighter_rtol_is_not_worse(sa_reference):
-    ref, _ = sa_reference
+    # errors below the reference's own error bar (5.2e-7 here) are not resolved by it: the
+    # comparison is of max(error, bar) (rtol 1e-4 and 1e-5 both land below the bar)
+    ref, ref_err = sa_reference
     errs = []
     for rtol in (1e-3, 1e-4, 1e-5):
         r = pf.solve_contact(SA, P_SA[1:2], e_star=E_SA, work_of_adhesion=DG_SA, rtol=rtol)
-        errs.append(abs(r.area[0] - ref[1]))
+        errs.append(max(abs(r.area[0] - ref[1]), ref_err[1]))
     assert errs[1] <= errs[0] * 1.5 and errs[2] <= errs[1] * 1.5, errs
 
 
