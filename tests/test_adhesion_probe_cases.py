@@ -57,6 +57,18 @@ def _scene(c):
     return s, dict(e_star=c["e_star"], work_of_adhesion=c["work_of_adhesion"])
 
 
+def _solve_and_oracle(c, factors=(1e-2, 1e-3)):
+    """The scene's result at its rtol and the oracle: the solve at rtol times the last of
+    ``factors``, checked against the one at the first (status 0, within 0.02 rtol)."""
+    s, kw = _scene(c)
+    p = np.array([c["pressure"]])
+    refs = [pf.solve_contact(s, p, rtol=c["rtol"] * f, **kw) for f in factors]
+    assert all(r.status[0] == 0 for r in refs)
+    ref = refs[-1].area[0]
+    assert abs(refs[0].area[0] - ref) <= 0.02 * c["rtol"] * ref     # the oracle has converged
+    return pf.solve_contact(s, p, rtol=c["rtol"], **kw), ref
+
+
 #: scenes whose fixed point stopped on a small residual with the area still off (zero load on
 #: a sticky surface, small tensions): 1.0-2.8 rtol off with status 0 and estimates
 #: 0.26-0.66x the error before the stop also required 0.01 rtol and a settled area
@@ -90,13 +102,7 @@ STOP_SCENES = {
 @pytest.mark.parametrize("name", sorted(STOP_SCENES))
 def test_fixed_point_stop_within_rtol(name):
     c = STOP_SCENES[name]
-    s, kw = _scene(c)
-    p = np.array([c["pressure"]])
-    refs = [pf.solve_contact(s, p, rtol=c["rtol"] * f, **kw) for f in (1e-2, 1e-3)]
-    assert all(r.status[0] == 0 for r in refs)
-    ref = refs[1].area[0]
-    assert abs(refs[0].area[0] - ref) <= 0.02 * c["rtol"] * ref     # the oracle has converged
-    res = pf.solve_contact(s, p, rtol=c["rtol"], **kw)
+    res, ref = _solve_and_oracle(c)
     err = abs(res.area[0] - ref)
     assert res.status[0] == 0, res.message
     assert err <= c["rtol"] * ref
@@ -126,12 +132,7 @@ def test_amplified_diffusion_error_within_rtol():
              h_rms=1.5759564780661478e-07, e_star=108318607.20923069,
              work_of_adhesion=0.41865480617164014, rtol=0.0008736754705484193,
              pressure=188425.48943503003)
-    s, kw = _scene(c)
-    p = np.array([c["pressure"]])
-    refs = [pf.solve_contact(s, p, rtol=c["rtol"] * f, **kw) for f in (1e-2, 1e-3)]
-    ref = refs[1].area[0]
-    assert abs(refs[0].area[0] - ref) <= 0.02 * c["rtol"] * ref
-    res = pf.solve_contact(s, p, rtol=c["rtol"], **kw)
+    res, ref = _solve_and_oracle(c)
     assert res.status[0] == 0
     assert abs(res.area[0] - ref) <= c["rtol"] * ref
 
@@ -147,13 +148,7 @@ def test_onset_in_the_last_cell_at_large_pressure_within_rtol():
              h_rms=2.3608289836876854e-07, e_star=3449903158.786992,
              work_of_adhesion=0.0013618066270709342, rtol=0.0001937245614110028,
              pressure=5558724.611461243)
-    s, kw = _scene(c)
-    p = np.array([c["pressure"]])
-    refs = [pf.solve_contact(s, p, rtol=c["rtol"] * f, **kw) for f in (1.0 / 30, 1e-2)]
-    assert all(r.status[0] == 0 for r in refs)
-    ref = refs[1].area[0]
-    assert abs(refs[0].area[0] - ref) <= 0.02 * c["rtol"] * ref
-    res = pf.solve_contact(s, p, rtol=c["rtol"], **kw)
+    res, ref = _solve_and_oracle(c, (1.0 / 30, 1e-2))
     assert res.status[0] == 0
     assert abs(res.area[0] - ref) <= c["rtol"] * ref
 
