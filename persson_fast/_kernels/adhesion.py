@@ -446,7 +446,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     real = area                          # the real contact area A_el + A_pl
     prev = np.full(n, np.nan)            # ... of the previous iteration
     change = np.zeros(n)                 # |real - prev| of the last iteration
-    snap = np.empty((12, n))             # the first state converged in residual
+    snap = np.empty((12, n))             # the first state below the fallback residual
     have_snap = False
     snap_kstat = 0
     snap_residual = 0.0
