@@ -124,7 +124,7 @@ def test_tension_results_agree_across_tolerances():
 @pytest.mark.xfail(strict=True, reason=(
     "known: the fixed point amplifies the errors of its diffusion solves (here about 2.6x "
     "their own estimate), by the same amount on every zeta level, so the ladder cannot see "
-    "it; random probing (benchmarks/adhesion_probe.py) finds 3 such rows in 2050 unflagged "
+    "it; random probing (benchmarks/adhesion_probe.py) finds 4 such rows in 2050 unflagged "
     "ones, up to 1.5 rtol off. This scene (strong adhesion, compression, rtol 8.7e-4) is 1.5 rtol "
     "off with an estimate of 0.5 rtol; with the diffusions at rtol/16 it is 0.01 rtol off"))
 def test_amplified_diffusion_error_within_rtol():
