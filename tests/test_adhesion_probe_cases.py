@@ -32,41 +32,38 @@ SCENES = {
 }
 
 
-@pytest.mark.parametrize("name", sorted(SCENES))
-def test_onset_before_zeta1_within_rtol(name):
-    c = SCENES[name]
-    s = pf.SelfAffine(hurst=c["hurst"], q0=c["q0"], q1=c["q0"] * 10 ** c["decades"],
-                      h_rms=c["h_rms"])
-    kw = dict(e_star=c["e_star"], work_of_adhesion=c["work_of_adhesion"])
-    p = np.array([c["pressure"]])
-    refs = [pf.solve_contact(s, p, rtol=c["rtol"] * f, **kw).area[0] for f in (1e-2, 1e-3)]
-    assert abs(refs[0] - refs[1]) <= 0.01 * c["rtol"] * refs[1]      # the oracle has converged
-    res = pf.solve_contact(s, p, rtol=c["rtol"], **kw)
-    g = res.gamma_eff[0]
-    cells = np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
-    assert cells.size == 1 and cells[0] >= g.size - 3               # the onset just before zeta1
-    err = abs(res.area[0] - refs[1])
-    assert res.status[0] == 0, res.message
-    assert err <= c["rtol"] * refs[1]
-    assert err <= res.error_estimate[0] <= 10 * err
-
-
 def _scene(c):
     s = pf.SelfAffine(hurst=c["hurst"], q0=c["q0"], q1=c["q0"] * 10 ** c["decades"],
                       h_rms=c["h_rms"])
     return s, dict(e_star=c["e_star"], work_of_adhesion=c["work_of_adhesion"])
 
 
-def _solve_and_oracle(c, factors=(1e-2, 1e-3)):
+def _solve_and_oracle(c, factors=(1e-2, 1e-3), agree=0.02, oracle_status=True):
     """The scene's result at its rtol and the oracle: the solve at rtol times the last of
-    ``factors``, checked against the one at the first (status 0, within 0.02 rtol)."""
+    ``factors``, checked against the one at the first (within ``agree`` rtol, and with
+    status 0 unless ``oracle_status`` is False)."""
     s, kw = _scene(c)
     p = np.array([c["pressure"]])
     refs = [pf.solve_contact(s, p, rtol=c["rtol"] * f, **kw) for f in factors]
-    assert all(r.status[0] == 0 for r in refs)
+    assert not oracle_status or all(r.status[0] == 0 for r in refs)
     ref = refs[-1].area[0]
-    assert abs(refs[0].area[0] - ref) <= 0.02 * c["rtol"] * ref     # the oracle has converged
+    assert abs(refs[0].area[0] - ref) <= agree * c["rtol"] * ref    # the oracle has converged
     return pf.solve_contact(s, p, rtol=c["rtol"], **kw), ref
+
+
+@pytest.mark.parametrize("name", sorted(SCENES))
+def test_onset_before_zeta1_within_rtol(name):
+    c = SCENES[name]
+    # the oracles of these late onsets are flagged RTOL_NOT_MET (their error estimates at
+    # rtol/100 and rtol/1000 exceed those tolerances), but agree with each other to 0.01 rtol
+    res, ref = _solve_and_oracle(c, agree=0.01, oracle_status=False)
+    g = res.gamma_eff[0]
+    cells = np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
+    assert cells.size == 1 and cells[0] >= g.size - 3               # the onset just before zeta1
+    err = abs(res.area[0] - ref)
+    assert res.status[0] == 0, res.message
+    assert err <= c["rtol"] * ref
+    assert err <= res.error_estimate[0] <= 10 * err
 
 
 #: scenes whose fixed point stopped on a small residual with the area still off (zero load on
@@ -121,34 +118,37 @@ def test_tension_results_agree_across_tolerances():
     assert abs(loose.area[0] - tight.area[0]) <= 3.96e-6 * tight.area[0]
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "known: the fixed point amplifies the errors of its diffusion solves (here about 2.6x "
-    "their own estimate), by the same amount on every zeta level, so the ladder cannot see "
-    "it; random probing (benchmarks/adhesion_probe.py) finds 4 such rows in 2050 unflagged "
-    "ones, up to 1.5 rtol off. This scene (strong adhesion, compression, rtol 8.7e-4) is 1.5 rtol "
-    "off with an estimate of 0.5 rtol; with the diffusions at rtol/16 it is 0.01 rtol off"))
-def test_amplified_diffusion_error_within_rtol():
-    c = dict(hurst=0.8017880918070945, decades=1.4646249671845748, q0=207392.2073337302,
-             h_rms=1.5759564780661478e-07, e_star=108318607.20923069,
-             work_of_adhesion=0.41865480617164014, rtol=0.0008736754705484193,
-             pressure=188425.48943503003)
-    res, ref = _solve_and_oracle(c)
-    assert res.status[0] == 0
-    assert abs(res.area[0] - ref) <= c["rtol"] * ref
+#: the fixed point amplifies the errors of its diffusion solves alike on every zeta level, so
+#: the ladder cannot see it; random probing (benchmarks/adhesion_probe.py) finds 4 such rows
+#: in 2050 unflagged ones, up to 1.5 rtol off. Per scene: the parameters, the oracle's rtol
+#: factors and the known defect
+AMPLIFIED_SCENES = {
+    "strong adhesion, compression": (dict(
+        hurst=0.8017880918070945, decades=1.4646249671845748, q0=207392.2073337302,
+        h_rms=1.5759564780661478e-07, e_star=108318607.20923069,
+        work_of_adhesion=0.41865480617164014, rtol=0.0008736754705484193,
+        pressure=188425.48943503003), (1e-2, 1e-3),
+        "known: the amplified diffusion error is about 2.6x the diffusions' own estimate: 1.5 "
+        "rtol off with an estimate of 0.5 rtol; with the diffusions at rtol/16, 0.01 rtol off"),
+    "onset in the last cell at a large pressure": (dict(
+        hurst=0.531161966809038, decades=1.698543846049879, q0=404993.66796160623,
+        h_rms=2.3608289836876854e-07, e_star=3449903158.786992,
+        work_of_adhesion=0.0013618066270709342, rtol=0.0001937245614110028,
+        pressure=5558724.611461243), (1.0 / 30, 1e-2),
+        "known: weak adhesion at a large pressure (A = 0.004), the onset of sigma_a in the "
+        "last cell before zeta1 (a late sign change: diffusions at rtol/4, 2.5x their "
+        "estimate charged): the amplified diffusion error is 6.3x their estimate (1.03 rtol "
+        "off, estimate 0.41 rtol; with the diffusions at rtol/64, 0.004 rtol off); found by "
+        "random probing (seed 25)"),
+}
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "known: weak adhesion at a large pressure (A = 0.004), the onset of sigma_a in the last "
-    "cell before zeta1 (a late sign change: diffusions at rtol/4, 2.5x their estimate "
-    "charged): the amplified diffusion error is 6.3x their estimate, alike on every zeta "
-    "level (1.03 rtol off, estimate 0.41 rtol; with the diffusions at rtol/64, 0.004 rtol "
-    "off); found by random probing (seed 25)"))
-def test_onset_in_the_last_cell_at_large_pressure_within_rtol():
-    c = dict(hurst=0.531161966809038, decades=1.698543846049879, q0=404993.66796160623,
-             h_rms=2.3608289836876854e-07, e_star=3449903158.786992,
-             work_of_adhesion=0.0013618066270709342, rtol=0.0001937245614110028,
-             pressure=5558724.611461243)
-    res, ref = _solve_and_oracle(c, (1.0 / 30, 1e-2))
+@pytest.mark.parametrize("name", [
+    pytest.param(name, marks=pytest.mark.xfail(strict=True, reason=reason))
+    for name, (_, _, reason) in sorted(AMPLIFIED_SCENES.items())])
+def test_amplified_diffusion_error_within_rtol(name):
+    c, factors, _ = AMPLIFIED_SCENES[name]
+    res, ref = _solve_and_oracle(c, factors)
     assert res.status[0] == 0
     assert abs(res.area[0] - ref) <= c["rtol"] * ref
 
