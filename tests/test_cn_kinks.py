@@ -148,3 +148,37 @@ def test_dense_schedule_costs_about_one_coarse_step_per_piece():
     assert np.all(_within(r.area[0], ref, 1e-6))
     # 112 pieces after the start: an unpaired ladder takes >= 7 steps per piece (1 + 2 + 4)
     assert r.counts[0, 1] < 5.0 * 112, r.counts[0]
+
+
+def _late_recession_wall(g_star, top=0.0089, m=8):
+    """Zero up to g_star, then a square-root rise to ``top`` at G = 1 on m samples graded as
+    (k/m)^2: the detachment wall of a sign change of gamma_eff in the last zeta cell
+    (the late-onset scene of tests/test_adhesion_probe_cases.py, its fixed point's wall)."""
+    G = np.concatenate([[0.0], np.geomspace(1e-3, 0.9, 30), [g_star],
+                        g_star + (1.0 - g_star) * (np.arange(1, m + 1) / m) ** 2])
+    sa = np.where(G > g_star, top * np.sqrt(np.clip((G - g_star) / (1.0 - g_star), 0.0, None)),
+                  0.0)
+    return G, sa
+
+
+@pytest.mark.parametrize("g_star", [0.99993, 0.9999, 0.9995])
+@pytest.mark.xfail(strict=True, reason=(
+    "known: a wall that recedes by more than sigma0 within the last 5e-4 of G1 (sigma0 = "
+    "0.0072, A = 0.004): cn at rtol 5e-5 returns 1.5-2.3 rtol off with status 0 and an "
+    "estimate of 0.90-0.95 rtol (bnr and fixed-grid agree to 1e-6). After the recession its "
+    "results converge at order ~1 (errors shrink 2.1-2.4x per level) while the estimate takes "
+    "order 3 for the extrapolated value, and the asymptotic test accepts ladder ratios of 2-8. "
+    "Tried: the error at the order the ladder shows where it converges more slowly than "
+    "assumed. Everywhere: 1.7-4x the time on the square-root callable wall (GRID_CAP at rtol "
+    "1e-8); from the first kink on only: 1.7-1.9x there, these three within rtol, but such "
+    "walls at rtol 1e-4 or g_star = 0.999 still 1.1 rtol off: not landed"))
+def test_late_fast_recession_within_rtol(g_star):
+    G, sa = _late_recession_wall(g_star)
+    sigma0, rtol = 0.0072, 5e-5
+    ref = pf.solve_diffusion(G, sigma0, sa, method="bnr", rtol=1e-10, parallel=False)
+    twin = pf.solve_diffusion(G, sigma0, sa, method="fixed-grid", rtol=1e-9, parallel=False)
+    a_ref = ref.area[0, -1]
+    assert abs(twin.area[0, -1] - a_ref) <= 1e-6 * a_ref     # two methods agree: the oracle
+    r = pf.solve_diffusion(G, sigma0, sa, method="cn", rtol=rtol, parallel=False)
+    assert r.status[0] == 0
+    assert abs(r.area[0, -1] - a_ref) <= rtol * a_ref + ATOL
