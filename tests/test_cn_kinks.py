@@ -152,8 +152,8 @@ def test_dense_schedule_costs_about_one_coarse_step_per_piece():
 
 def _late_recession_wall(g_star, top=0.0089, m=8):
     """Zero up to g_star, then a square-root rise to ``top`` at G = 1 on m samples graded as
-    (k/m)^2: the detachment wall of a sign change of gamma_eff in the last zeta cell
-    (the late-onset scene of tests/test_adhesion_probe_cases.py, its fixed point's wall)."""
+    (k/m)^2: shaped like the fixed point's final wall of the late-onset scene of
+    tests/test_adhesion_probe_cases.py (a sign change of gamma_eff in the last zeta cell)."""
     G = np.concatenate([[0.0], np.geomspace(1e-3, 0.9, 30), [g_star],
                         g_star + (1.0 - g_star) * (np.arange(1, m + 1) / m) ** 2])
     sa = np.where(G > g_star, top * np.sqrt(np.clip((G - g_star) / (1.0 - g_star), 0.0, None)),
