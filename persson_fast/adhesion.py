@@ -20,7 +20,8 @@ import time
 
 import numpy as np
 
-from ._kernels.adhesion import adhesive_sweep_parallel, adhesive_sweep_serial
+from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
+                               adhesive_sweep_parallel, adhesive_sweep_serial)
 from ._kernels.status import NOT_CONVERGED, RTOL_NOT_MET
 from ._kernels.theories import WM17, YP08
 from ._validation import as_float_array, check_finite
@@ -37,8 +38,10 @@ __all__ = ["adhesion_zeta", "solve_adhesive_contact", "ADHESION_DEFAULTS"]
 #: the corrected theories the fixed point serves, and their kernel codes
 THEORY_CODES = {"yp08": YP08, "wm17": WM17}
 
-#: iteration controls of the fixed point (Anderson depth 0 = plain relaxation)
-ADHESION_DEFAULTS = {"max_iter": 100, "m_hist": 5, "omega": 0.5, "n_damp": 2}
+#: iteration controls of the fixed point (Anderson depth 0 = plain relaxation; see
+#: :data:`persson_fast._kernels.adhesion.DEFAULT_OMEGA`)
+ADHESION_DEFAULTS = {"max_iter": DEFAULT_MAX_ITER, "m_hist": DEFAULT_M_HIST,
+                     "omega": DEFAULT_OMEGA, "n_damp": DEFAULT_N_DAMP}
 
 
 def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None, variant=0,
@@ -101,8 +104,8 @@ def warm_adhesive_yield(prange: bool = False) -> None:
         _run(G, c, w, w, -1.0, np.array([1.0, 2.0]), 1e-2, par, ctl, sy=sy)
 
 
-def _controls(overrides):
-    controls = dict(ADHESION_DEFAULTS)
+def _controls(overrides, defaults=None):
+    controls = dict(ADHESION_DEFAULTS if defaults is None else defaults)
     if overrides:
         unknown = set(overrides) - set(controls)
         if unknown:

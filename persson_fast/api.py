@@ -464,7 +464,7 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         thread. See :func:`persson_fast.sweep.choose_parallel`.
     adhesion_controls : dict or None
         Fixed-point controls: ``max_iter`` (100), ``m_hist`` (Anderson depth, 5; 0 = plain
-        relaxation), ``omega`` (relaxation, 0.5), ``n_damp`` (2).
+        relaxation), ``omega`` (relaxation, 1.0; in tension at most 0.5), ``n_damp`` (2).
     theory : str
         The area theory: "persson01" (default, the original; this path is unchanged by the
         option), or a corrected one, "yp08" (Yang & Persson 2008), "wm17" (Wang & Mueser

@@ -99,13 +99,14 @@ import numpy as np
 
 from ._jit import njit_serial
 from ._kernels import status as _status
-from ._kernels.adhesion import solve_adhesive_one
+from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
+                               solve_adhesive_one)
 from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_separation,
                                    law_stiffness)
 from ._kernels.similarity import solve_one
 from ._kernels.strip import N_DAMP as STRIP_N_DAMP
 from ._kernels.strip import solve_strip
-from .adhesion import ADHESION_DEFAULTS, _scene_arrays, adhesion_zeta, refine_zeta
+from .adhesion import _scene_arrays, adhesion_zeta, refine_zeta
 from .contact_law import ContactLaw, contact_law
 from .scene import DETACHMENT_PREFACTOR
 
@@ -298,10 +299,10 @@ def adhesive_scene(surface, *, e_star=None, work_of_adhesion=None, energy_correc
 
 
 #: fixed-point controls of the compiled path (the package defaults)
-ADHESION_N_DAMP = int(ADHESION_DEFAULTS["n_damp"])
-ADHESION_MAX_ITER = int(ADHESION_DEFAULTS["max_iter"])
-ADHESION_M_HIST = int(ADHESION_DEFAULTS["m_hist"])
-ADHESION_OMEGA = float(ADHESION_DEFAULTS["omega"])
+ADHESION_N_DAMP = DEFAULT_N_DAMP
+ADHESION_MAX_ITER = DEFAULT_MAX_ITER
+ADHESION_M_HIST = DEFAULT_M_HIST
+ADHESION_OMEGA = DEFAULT_OMEGA
 
 
 @njit_serial

@@ -179,3 +179,32 @@ def test_properties_self_affine(hurst, h_rms, dg, frac):
         check_books(r)
         r0 = pf.solve_contact(s, p, e_star=e_star)
         assert r.area[0] >= r0.area[0] * (1 - 1e-4) - 1e-12
+
+
+def test_whole_anderson_steps_are_the_cheaper_default():
+    """omega = 1 (the default) reaches the half-step fixed point within rtol, in fewer
+    iterations (summed over the zeta levels) on every pressure of the seed scene."""
+    p = np.linspace(0.0, 1e8, 6)
+    a = seed(p, rtol=1e-4)
+    b = seed(p, rtol=1e-4, adhesion_controls={"omega": 0.5})
+    assert pf.adhesion.ADHESION_DEFAULTS["omega"] == 1.0
+    assert a.success and b.success
+    assert np.all(np.abs(a.area - b.area) <= 1e-4 * a.area)
+    assert np.all(a.iterations < b.iterations), (a.iterations, b.iterations)
+
+
+def test_defaults_baked_into_compiled_entry_points_live_in_kernel_files():
+    """embed's compiled entry points bake the fixed point's default controls in at compile
+    time; they must come from a file whose change invalidates cached kernels."""
+    from pathlib import Path
+
+    from persson_fast import _jit, embed
+    from persson_fast._kernels import adhesion as kern
+
+    assert Path(kern.__file__).resolve() in {p.resolve() for p in _jit._kernel_paths()}
+    assert (embed.ADHESION_OMEGA, embed.ADHESION_M_HIST, embed.ADHESION_MAX_ITER,
+            embed.ADHESION_N_DAMP) == (kern.DEFAULT_OMEGA, kern.DEFAULT_M_HIST,
+                                      kern.DEFAULT_MAX_ITER, kern.DEFAULT_N_DAMP)
+    assert pf.adhesion.ADHESION_DEFAULTS == {
+        "max_iter": kern.DEFAULT_MAX_ITER, "m_hist": kern.DEFAULT_M_HIST,
+        "omega": kern.DEFAULT_OMEGA, "n_damp": kern.DEFAULT_N_DAMP}

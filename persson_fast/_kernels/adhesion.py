@@ -40,6 +40,24 @@ from .strip import N_DAMP as STRIP_N_DAMP
 from .strip import solve_strip
 from .theories import correction_factor
 
+#: the fixed point's default controls (the package's ``ADHESION_DEFAULTS``), here because the
+#: compiled entry points of :mod:`persson_fast.embed` bake them in (a cached kernel is
+#: recompiled when a file with compiled code changes, see :mod:`persson_fast._jit`): the
+#: iteration cap, the Anderson depth, the relaxation factor and the Rannacher steps. The
+#: Anderson step is taken whole (omega = 1; in tension at most TENSION_OMEGA): on the seed
+#: scene at rtol 1e-4 (0 ... 100 MPa) it needs 14.2 iterations per pressure over the three
+#: zeta levels against 19.5 with omega = 0.5 (the same areas within 0.35 rtol of an
+#: rtol-1e-8 solve), and random probing (``benchmarks/adhesion_probe.py``, seeds 21-25, 150
+#: scenes each, whole steps in tension too) finds the same rows outside rtol as with 0.5
+DEFAULT_MAX_ITER = 100
+DEFAULT_M_HIST = 5
+DEFAULT_OMEGA = 1.0
+DEFAULT_N_DAMP = 2
+#: in nominal tension the relaxation factor is at most this: towards the pull-off stress the
+#: fixed point is nearly singular, and whole steps from a distant start lose the end of the
+#: contact branch sooner (seed scene, rtol 1e-4, from full contact: separated from 0.993
+#: sigma_c on, with half steps from 0.995 sigma_c on)
+TENSION_OMEGA = 0.5
 #: iterations without halving the best residual after which the fixed point gives up
 STALL_ITERATIONS = 10
 #: the fixed point stops when the sup-norm of F(x) - x, relative to max(|x|, |sigma0|), is
@@ -399,7 +417,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         and the area at zeta1 has settled (AREA_SETTLE), or falls back to the first state
         below FIXED_POINT_FALLBACK rtol when the iteration stalls.
     n_damp, max_iter, m_hist, omega -- Rannacher steps, iteration cap, Anderson depth
-        (0: plain relaxation), relaxation factor.
+        (0: plain relaxation), relaxation factor (at most TENSION_OMEGA where sigma0 < 0).
     x_init : (n_z,) -- start sigma_a; a negative first entry selects the full-contact start.
         Early iterations solve the diffusion to a looser tolerance (at most 1e-3, at least
         rtol, a tenth of the smallest residual so far); the last ones to rtol.
@@ -428,6 +446,8 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     (status, iterations, residual)
     """
     n = G.shape[0]
+    if sigma0 < 0.0 and omega > TENSION_OMEGA:
+        omega = TENSION_OMEGA
     tol = max(FIXED_POINT_STOP * rtol, 1e-13)
     tol_fallback = max(FIXED_POINT_FALLBACK * rtol, 1e-13)
     corrected = theory != 0
