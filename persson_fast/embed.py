@@ -298,21 +298,14 @@ def adhesive_scene(surface, *, e_star=None, work_of_adhesion=None, energy_correc
     return (Gc, cc, wac, wbc, Gf, cf, waf, wbf, gamma_s, float(scale))
 
 
-#: fixed-point controls of the compiled path (the package defaults)
-ADHESION_N_DAMP = DEFAULT_N_DAMP
-ADHESION_MAX_ITER = DEFAULT_MAX_ITER
-ADHESION_M_HIST = DEFAULT_M_HIST
-ADHESION_OMEGA = DEFAULT_OMEGA
-
-
 @njit_serial
 def _fixed_point_area(G, c, wa, wb, gamma_s, sigma0, rtol):
     n = G.shape[0]
     x0 = np.full(n, -1.0)
     outs = np.empty((8, n))
     s, it, res = solve_adhesive_one(0, G, c, wa, wb, gamma_s, sigma0, rtol,
-                                    ADHESION_N_DAMP, ADHESION_MAX_ITER, ADHESION_M_HIST,
-                                    ADHESION_OMEGA, x0, outs[0], outs[1], outs[2], outs[3],
+                                    DEFAULT_N_DAMP, DEFAULT_MAX_ITER, DEFAULT_M_HIST,
+                                    DEFAULT_OMEGA, x0, outs[0], outs[1], outs[2], outs[3],
                                     outs[4], outs[5], outs[6], outs[7])
     return outs[0, n - 1], s
 

@@ -6,7 +6,8 @@ import pytest
 import persson_fast as pf
 from persson_fast import embed
 from persson_fast._kernels import status as st
-from persson_fast._kernels.adhesion import solve_adhesive_one
+from persson_fast._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP,
+                                            DEFAULT_OMEGA, solve_adhesive_one)
 from persson_fast._kernels.similarity import solve_one
 
 E_STAR = 2.9e9 / (1 - 0.3**2)
@@ -239,9 +240,9 @@ def _raw_diffusion(G, sigma_a, sigma0, rtol, n_damp):
 def _raw_fixed_point(G, c, wa, wb, gamma_s, sigma0, rtol):
     n = G.shape[0]
     outs = np.empty((8, n))
-    s, it, res = solve_adhesive_one(0, G, c, wa, wb, gamma_s, sigma0, rtol, embed.ADHESION_N_DAMP,
-                                    embed.ADHESION_MAX_ITER, embed.ADHESION_M_HIST,
-                                    embed.ADHESION_OMEGA, np.full(n, -1.0), outs[0], outs[1],
+    s, it, res = solve_adhesive_one(0, G, c, wa, wb, gamma_s, sigma0, rtol, DEFAULT_N_DAMP,
+                                    DEFAULT_MAX_ITER, DEFAULT_M_HIST,
+                                    DEFAULT_OMEGA, np.full(n, -1.0), outs[0], outs[1],
                                     outs[2], outs[3], outs[4], outs[5], outs[6], outs[7])
     return outs[0, n - 1], s
 
