@@ -11,6 +11,9 @@
 * thin wrappers: ``inline="always"`` (:func:`njit_inline`), which spares compiled callers a
   call boundary (numba finalises every function with its callees linked in and optimised
   again, so each boundary re-optimises everything below it);
+* the reverse, for a large callee under a large caller: the callee passed by address as a
+  numba first-class function argument (:class:`CallingKernel`), so the caller is compiled
+  without the callee's code inside it and the two are compiled (and cached) apart;
 * ``fastmath`` stays off: the accuracy tests are written for IEEE arithmetic.
 
 Setting the environment variable ``NUMBA_DISABLE_JIT=1`` runs every kernel as plain Python,
@@ -19,13 +22,18 @@ which is how line coverage is measured honestly.
 from __future__ import annotations
 
 import hashlib
+import os
+import subprocess
+import sys
+import threading
 from pathlib import Path
 
 import numba
-from numba.core import caching
+import numpy as np
+from numba.core import caching, types
 
 __all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange",
-           "kernel_source_stamp"]
+           "kernel_source_stamp", "CallingKernel", "in_disk_cache", "compile_beside"]
 
 prange = numba.prange
 
@@ -122,6 +130,95 @@ def njit_parallel(func):
     return numba.njit(parallel=True, cache=False, fastmath=False, nogil=True, error_model="numpy")(func)
 
 
+def _fingerprint(value):
+    """What decides the numba type of an argument, cheaply (no ``numba.typeof``)."""
+    if isinstance(value, np.ndarray):
+        return (value.dtype.str, value.ndim, value.flags.c_contiguous, value.flags.f_contiguous,
+                value.flags.writeable)
+    return type(value)
+
+
+class CallingKernel:
+    """A cached kernel whose first arguments are other compiled functions, called by address
+    (numba first-class functions of the signatures ``callee_signatures``, one per leading
+    argument).
+
+    numba links every compiled callee into its caller and optimises and generates the machine
+    code of the whole again, so a kernel above the diffusion solver pays for the solver's
+    code again on the first call on a machine. Passed as first-class functions, the callees
+    are compiled (and cached) on their own, the caller without them, and on a cold cache in
+    two processes at once (:func:`compile_beside`). The call goes through the callee's own
+    entry point (numba's calling convention: its exceptions propagate), which costs nothing
+    measurable against a diffusion solve. Called as ``kernel(*callees, *args)`` with
+    dispatchers; each new combination of argument types is compiled (or loaded from the disk
+    cache) once, for the exact types given, and each callee for its signature. The same body
+    may also be compiled as an ordinary (inlined) function for compiled callers, with the
+    callees linked in: numba generates the same arithmetic either way (no fast-math, no
+    reassociation).
+    """
+
+    def __init__(self, dispatcher, callee_signatures):
+        self.dispatcher = dispatcher
+        self.callee_signatures = tuple(callee_signatures)
+        self._n = len(self.callee_signatures)
+        self._entries = {}
+        self._lock = threading.Lock()
+
+    @property
+    def overloads(self):
+        return getattr(self.dispatcher, "overloads", {})
+
+    @property
+    def stats(self):
+        return self.dispatcher.stats
+
+    @property
+    def py_func(self):
+        return getattr(self.dispatcher, "py_func", self.dispatcher)
+
+    def _entry(self, args, with_callees=True):
+        key = tuple(args[:self._n]) + tuple(_fingerprint(a) for a in args[self._n:])
+        entry = self._entries.get(key)
+        if entry is None:
+            with self._lock:
+                signature = (tuple(types.FunctionType(s) for s in self.callee_signatures)
+                             + tuple(numba.typeof(a) for a in args[self._n:]))
+                entry = self.dispatcher.compile(signature)
+                if not with_callees:
+                    return entry
+                for callee, sig in zip(args[:self._n], self.callee_signatures):
+                    callee.compile(sig)
+                self._entries[key] = entry
+        return entry
+
+    def entry(self, *args):
+        """The compiled function for these arguments' types, to be called with the same
+        arguments (saves the type lookup of :meth:`__call__` in a loop)."""
+        if not hasattr(self.dispatcher, "compile"):      # NUMBA_DISABLE_JIT=1
+            return self.dispatcher
+        return self._entry(args)
+
+    def compile_alone(self, *args):
+        """Compile (or load) the kernel for these arguments' types, but not its callees."""
+        if hasattr(self.dispatcher, "compile"):
+            self._entry(args, with_callees=False)
+
+    def __call__(self, *args):
+        return self.entry(*args)(*args)
+
+
+def callable_with(dispatcher, signature, callees=()):
+    """``dispatcher`` compiled (or loaded) for ``signature``, whose leading arguments are
+    first-class functions: the entry point, to be called from Python with the dispatchers
+    ``callees`` (pairs (dispatcher, signature), compiled first) in their places. Under
+    ``NUMBA_DISABLE_JIT`` the plain function."""
+    if not hasattr(dispatcher, "compile"):
+        return dispatcher
+    for callee, sig in callees:
+        callee.compile(sig)
+    return dispatcher.compile(signature)
+
+
 def njit_sweeps(func):
     """(serial, parallel) dispatchers of one sweep body written with ``prange``.
 
@@ -130,3 +227,90 @@ def njit_sweeps(func):
     its own rows).
     """
     return njit_serial(func), njit_parallel(func)
+
+
+def in_disk_cache(dispatcher, signature) -> bool:
+    """True when numba's disk cache holds ``dispatcher`` compiled for ``signature`` (as given
+    to ``dispatcher.compile``) with the current kernel sources; nothing is loaded. When the
+    cache cannot be read this way (another numba version), True: the caller then compiles
+    in this process, as it would anyway."""
+    try:
+        cache = dispatcher._cache
+        key = cache._index_key(signature, dispatcher.targetctx.codegen())
+        return key in cache._cache_file._load_index()
+    except Exception:
+        return True
+
+
+def _usable_cpus() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
+
+
+#: what the second process runs: compile module.name for module.signature_name, each job
+_WORKER = ("import importlib, sys\n"
+           "for job in sys.argv[1:]:\n"
+           "    module, name, sig = job.split(':')\n"
+           "    m = importlib.import_module(module)\n"
+           "    getattr(m, name).compile(getattr(m, sig))\n")
+
+
+class _Beside:
+    """A second Python process compiling kernels into the shared disk cache."""
+
+    def __init__(self, jobs):
+        env = dict(os.environ)
+        # the same package as this process, whatever the working directory
+        root = str(_PACKAGE.parent)
+        env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH")
+                                    else "")
+        self.proc = subprocess.Popen([sys.executable, "-c", _WORKER, *jobs], env=env,
+                                     stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                                     stderr=subprocess.DEVNULL)
+
+    def wait(self, timeout: float = 900.0) -> bool:
+        """Wait for the second process; True when it finished without error. A failed or
+        timed-out one costs nothing but time: the caller compiles what is missing itself."""
+        try:
+            return self.proc.wait(timeout) == 0
+        except subprocess.TimeoutExpired:
+            return False
+        finally:
+            if self.proc.poll() is None:
+                self.proc.kill()
+                self.proc.wait()
+
+
+def compile_beside(jobs):
+    """Start compiling kernels in a second process while this one goes on, or None.
+
+    ``jobs``: (dispatcher, signature) pairs, both module-level names of one module
+    (``"module:name:signature_name"`` strings are built from them). Only those not compiled
+    here and not in the disk cache are sent; None when none is left, with fewer than two
+    usable CPUs, or under ``NUMBA_DISABLE_JIT``. numba compiles one function at a time per
+    process (a global lock), so on a cold cache the first call on a machine with two cores
+    takes about the larger of the two shares instead of their sum; the results come back
+    through the disk cache (numba writes its files atomically), where this process loads
+    them (``dispatcher.compile``) after :meth:`_Beside.wait`.
+    """
+    if _usable_cpus() < 2 or numba.config.DISABLE_JIT:
+        return None
+    names = []
+    for dispatcher, signature in jobs:
+        args = tuple(signature.args) if hasattr(signature, "args") else tuple(signature)
+        if args in getattr(dispatcher, "overloads", {}) or in_disk_cache(dispatcher, signature):
+            continue
+        module = sys.modules[dispatcher.py_func.__module__]
+        sig_name = next((k for k, v in vars(module).items() if v is signature), None)
+        if sig_name is None:
+            raise ValueError(f"compile_beside: the signature of {dispatcher.py_func.__name__} "
+                             "must be a module-level name of its module")
+        names.append(f"{module.__name__}:{dispatcher.py_func.__name__}:{sig_name}")
+    if not names:
+        return None
+    try:
+        return _Beside(names)
+    except OSError:
+        return None

@@ -15,13 +15,17 @@ contact branch to the pull-off stress.
 """
 from __future__ import annotations
 
-import contextlib
+import threading
 import time
 
 import numpy as np
 
+from ._jit import compile_beside
 from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
-                               adhesive_sweep_parallel, adhesive_sweep_serial)
+                               STEP_SIGNATURE, adhesive_sweep_parallel, adhesive_sweep_serial,
+                               elastic_step, elastic_step_linked, fixed_point_calling,
+                               yield_step, yield_step_linked)
+from ._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
 from ._kernels.status import NOT_CONVERGED, RTOL_NOT_MET
 from ._kernels.theories import WM17, YP08
 from ._validation import as_float_array, check_finite
@@ -30,7 +34,6 @@ from .results import ContactResult, per_contact_area, summarize_status
 from .scene import DETACHMENT_PREFACTOR
 from .yield_api import FAR_MASS, yield_wall_reach
 from .sweep import choose_parallel, is_compiled, prange_guard, run_rows
-
 from .zeta_grid import _scene_arrays, adhesion_zeta, coarsen_zeta, refine_zeta
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "ADHESION_DEFAULTS"]
@@ -51,35 +54,69 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
     two more, the plastic area and load), status, iterations, residual and timings."""
     n_p, n_z = p_scaled.size, G.size
     outs = [np.zeros((n_p, n_z)) for _ in range(8 if sy is None else 10)]
-    yield_args = [None, None, None] if sy is None else [np.ascontiguousarray(sy, dtype=float),
-                                                       outs[8], outs[9]]
+    if sy is None:                       # no yield wall: rows of length 0
+        step = elastic_step
+        yield_args = [np.zeros((n_p, 0)) for _ in range(3)]
+    else:
+        step = yield_step
+        yield_args = [np.ascontiguousarray(sy, dtype=float), outs[8], outs[9]]
     status = np.zeros(n_p, dtype=np.int64)
     iterations = np.zeros(n_p, dtype=np.int64)
     residual = np.zeros(n_p)
     if x_init is None:
         x_init = np.full((n_p, n_z), -1.0)
     mode = choose_parallel(parallel, n_p)
-    kernel = adhesive_sweep_parallel if mode == "prange" else adhesive_sweep_serial
+    if mode == "prange":                 # compiled per process: the solvers linked in
+        kernel, callees = adhesive_sweep_parallel, [LINKED_STEPS[step], None]
+    else:
+        kernel, callees = adhesive_sweep_serial, [step, _solve_grid_tol]
     timings = {}
-    if not is_compiled(kernel):
+    if not is_compiled(adhesive_sweep_parallel if mode == "prange" else fixed_point_calling):
         t0 = time.perf_counter()
-        with prange_guard() if mode == "prange" else contextlib.nullcontext():
-            kernel(variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"], 2,
-                   controls["m_hist"], controls["omega"], x_init[:1], *[o[:1] for o in outs[:8]],
-                   status[:1], iterations[:1], residual[:1], bool(onset), int(theory),
-                   float(theory_gamma), yield_args[0],
-                   *[None if a is None else a[:1] for a in yield_args[1:]])
+        first = [*callees, variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"],
+                 2, controls["m_hist"], controls["omega"], x_init[:1],
+                 *[o[:1] for o in outs[:8]], status[:1], iterations[:1], residual[:1],
+                 bool(onset), int(theory), float(theory_gamma), *[a[:1] for a in yield_args]]
+        with _compile_lock:
+            if mode == "prange":
+                with prange_guard():
+                    kernel(*first)
+            else:
+                _compile_fixed_point(first)
+                kernel(*first)
         timings["compile"] = time.perf_counter() - t0
-    args = [variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled), rtol,
+    args = [*callees, variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled), rtol,
             controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
             np.ascontiguousarray(x_init), *outs[:8], status, iterations, residual, bool(onset),
             int(theory), float(theory_gamma), *yield_args]
     t0 = time.perf_counter()
-    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args,
-             (6, 12) + (() if sy is None else (27,)),
-             tuple(range(13, 24)) + (() if sy is None else (28, 29)), n_p, parallel)
+    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args, (8, 14, 29),
+             tuple(range(15, 26)) + (30, 31), n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
     return outs, status, iterations, residual, timings
+
+
+_compile_lock = threading.Lock()
+#: the diffusion step the ``prange`` sweep links in, for the one the cached sweep calls
+LINKED_STEPS = {elastic_step: elastic_step_linked, yield_step: yield_step_linked}
+
+
+def _compile_fixed_point(first):
+    """Compile (or load) the cached fixed point and its diffusion step for the arguments of
+    one row: on a cold cache the step (the diffusion solver, the larger share) in a second
+    process while this one compiles the fixed point (:func:`persson_fast._jit.compile_beside`)."""
+    step = first[0]
+    beside = compile_beside([(_solve_grid_tol, GRID_SIGNATURE)])
+    # one row of the sweep's arguments: the fixed point's (no status, iterations, residual)
+    rows = (8, 14, 15, 16, 17, 18, 19, 20, 21, 22, 29, 30, 31)
+    row = [a[0] if i in rows else a for i, a in enumerate(first) if i not in (23, 24, 25)]
+    try:
+        fixed_point_calling.compile_alone(*row)
+        if hasattr(step, "compile"):             # not under NUMBA_DISABLE_JIT=1
+            step.compile(STEP_SIGNATURE)
+    finally:
+        if beside is not None:
+            beside.wait()
 
 
 def warm_adhesion(prange: bool = False) -> None:

@@ -111,7 +111,9 @@ class _Branch:
     """
 
     def __init__(self, surface, zeta, e_star, work_of_adhesion, beta, gamma_s, variant, n_damp):
-        from ._kernels.sweep import sweep_serial
+        from ._jit import callable_with
+        from ._kernels.adhesion import STEP_SIGNATURE, elastic_step
+        from ._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
 
         self.zeta = np.asarray(zeta, dtype=float)
         self.work_of_adhesion = float(work_of_adhesion)
@@ -121,13 +123,15 @@ class _Branch:
         # the adhesive wall: no kink detection, as in the fixed point of solve_contact
         self.variant = int(variant) | SMOOTH_WALL
         self.n_damp = int(n_damp)
-        self._kernel = sweep_serial
+        # one diffusion solve against the wall linear between the nodes (onset False): the
+        # fixed point's own step (compiled or loaded already for solve_contact)
+        self._grid = _solve_grid_tol
+        self._kernel = callable_with(elastic_step, STEP_SIGNATURE,
+                                     [(_solve_grid_tol, GRID_SIGNATURE)])
         n = self.zeta.size
-        self._out = [np.zeros((1, n)) for _ in range(5)]
-        # no upper wall, no plastic outputs: rows of length 0 (persson_fast._kernels.signature)
-        self._absent = np.zeros((1, 0))
-        self._status = np.zeros(1, dtype=np.int64)
-        self._counts = np.zeros((1, 3), dtype=np.int64)
+        self._out = [np.zeros(n) for _ in range(5)]
+        self._absent = np.zeros(0)       # no yield wall, no plastic outputs
+        self._counts = np.zeros(3, dtype=np.int64)
         self.solves = 0
         self.area = np.ones(n)
         self.area_error = np.zeros(n)
@@ -147,13 +151,14 @@ class _Branch:
     def evaluate(self, x, sigma0, rtol):
         """F(x): diffuse against the wall x at nominal stress sigma0 (scaled), then Eqs. 8-9."""
         area, load, det_a, det_l, err = self._out
-        self._kernel(self.variant, self.G, x[None, :], self._absent, np.array([sigma0]),
-                     float(rtol), -1, self.n_damp, area, load, det_a, det_l, err, self._absent,
-                     self._absent, self._status, self._counts)
+        x = np.ascontiguousarray(x, dtype=float)
+        status = self._kernel(self._grid, self.variant, self.G, x, x, self._absent,
+                              float(sigma0), float(rtol), False, self.n_damp, area, load,
+                              self._absent, self._absent, det_a, det_l, err, self._counts)
         self.solves += 1
-        self.area = area[0].copy()
-        self.area_error = err[0].copy()
-        return self.update(self.area), int(self._status[0])
+        self.area = area.copy()
+        self.area_error = err.copy()
+        return self.update(self.area), int(status)
 
     def adhesion_at_one(self, area=None, area_error=None):
         """gamma_eff(1)/dgamma of an area profile (default: the last one evaluated) and its

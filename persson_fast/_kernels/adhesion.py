@@ -32,10 +32,12 @@ import math
 
 import numpy as np
 
-from .._jit import njit_serial, njit_sweeps, prange
+from numba import types
+
+from .._jit import CallingKernel, njit_inline, njit_parallel, njit_serial, prange
 from . import status as st
 from .schedule import fill_state
-from .similarity import SMOOTH_WALL, solve_variant
+from .similarity import GRID_SIGNATURE, SMOOTH_WALL, _solve_grid_tol, solve_variant_by
 from .strip import N_DAMP as STRIP_N_DAMP
 from .strip import solve_strip
 from .theories import correction_factor
@@ -263,8 +265,9 @@ def _augmented_wall(G, x, g):
     return Ga, xa, node, na
 
 
-@njit_serial
-def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l, err, counts):
+@njit_inline
+def wall_solve(grid, variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l, err,
+               counts):
     """The diffusion solve of one fixed-point iterate: the wall -x, linear in G between the
     nodes, except near a sign change of gamma_eff (``g``, of the last update).
 
@@ -287,16 +290,16 @@ def wall_solve(variant, G, x, g, sigma0, rtol, n_damp, area, load, det_a, det_l,
     """
     Ga, xa, node, na = _augmented_wall(G, x, g)
     if na == 0:
-        return solve_variant(variant | SMOOTH_WALL, G, x, sigma0, rtol, np.int64(-1), n_damp,
-                             area, load, det_a, det_l, err, counts)
+        return solve_variant_by(grid, variant | SMOOTH_WALL, G, x, sigma0, rtol, np.int64(-1),
+                                n_damp, area, load, det_a, det_l, err, counts)
     n = G.shape[0]
     aa = np.empty(na)
     la = np.empty(na)
     da = np.empty(na)
     dl = np.empty(na)
     ea = np.empty(na)
-    kstat = solve_variant(variant | SMOOTH_WALL, Ga[:na], xa[:na], sigma0, rtol, np.int64(-1),
-                          n_damp, aa, la, da, dl, ea, counts)
+    kstat = solve_variant_by(grid, variant | SMOOTH_WALL, Ga[:na], xa[:na], sigma0, rtol,
+                             np.int64(-1), n_damp, aa, la, da, dl, ea, counts)
     for i in range(n):
         area[i] = aa[node[i]]
         load[i] = la[node[i]]
@@ -349,6 +352,69 @@ def wall_solve_two(G, x, g, sy, sigma0, rtol, onset, el, load, pl, pl_load, det_
         det_l[i] = out[5, k]
         err[i] = out[6, k]
     return kstat
+
+
+@njit_inline
+def _elastic_solve(grid, variant, T, x, g, sigma0, rtol, onset, n_damp, area, load, det_a,
+                   det_l, err, counts):
+    if onset:
+        return wall_solve(grid, variant, T, x, g, sigma0, rtol, n_damp, area, load, det_a,
+                          det_l, err, counts)
+    return solve_variant_by(grid, variant | SMOOTH_WALL, T, x, sigma0, rtol, np.int64(-1),
+                            n_damp, area, load, det_a, det_l, err, counts)
+
+
+@njit_serial
+def elastic_step(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load, pl,
+                 pl_load, det_a, det_l, err, counts):
+    """The diffusion solve of one fixed-point iterate without a yield wall (``sy``, ``pl``,
+    ``pl_load`` unused): :func:`wall_solve` (``onset``), else ``solve_variant`` on the nodes,
+    with the grid solver ``grid`` passed by address (:data:`STEP_SIGNATURE`)."""
+    return _elastic_solve(grid, variant, T, x, g, sigma0, rtol, onset, n_damp, area, load,
+                          det_a, det_l, err, counts)
+
+
+@njit_serial
+def yield_step(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load, pl,
+               pl_load, det_a, det_l, err, counts):
+    """The diffusion solve of one fixed-point iterate with the yield wall ``sy``:
+    :func:`wall_solve_two`; a yield wall the distribution cannot reach (sy[0] = inf) is left
+    out (as :func:`elastic_step`, plastic outputs zero)."""
+    if math.isinf(sy[0]):
+        return _elastic_solve(grid, variant, T, x, g, sigma0, rtol, onset, n_damp, area, load,
+                              det_a, det_l, err, counts)
+    return wall_solve_two(T, x, g, sy, sigma0, rtol, onset, area, load, pl, pl_load, det_a,
+                          det_l, err, counts)
+
+
+@njit_serial
+def elastic_step_linked(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load,
+                        pl, pl_load, det_a, det_l, err, counts):
+    """:func:`elastic_step` with the grid solver linked in (``grid`` None, unused): for
+    compiled callers."""
+    return _elastic_solve(_solve_grid_tol, variant, T, x, g, sigma0, rtol, onset, n_damp, area,
+                          load, det_a, det_l, err, counts)
+
+
+@njit_serial
+def yield_step_linked(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load, pl,
+                      pl_load, det_a, det_l, err, counts):
+    """:func:`yield_step` with the grid solver linked in (``grid`` None, unused)."""
+    if math.isinf(sy[0]):
+        return _elastic_solve(_solve_grid_tol, variant, T, x, g, sigma0, rtol, onset, n_damp,
+                              area, load, det_a, det_l, err, counts)
+    return wall_solve_two(T, x, g, sy, sigma0, rtol, onset, area, load, pl, pl_load, det_a,
+                          det_l, err, counts)
+
+
+#: the signature of :func:`elastic_step` and :func:`yield_step` (the two are
+#: interchangeable), by which the cached fixed point calls them by address, and they the
+#: grid solver (:data:`~persson_fast._kernels.similarity.GRID_SIGNATURE`; see
+#: :class:`persson_fast._jit.CallingKernel`)
+_A = types.float64[::1]
+STEP_SIGNATURE = types.int64(types.FunctionType(GRID_SIGNATURE), types.int64, _A, _A, _A, _A,
+                             types.float64, types.float64, types.boolean, types.int64, _A, _A,
+                             _A, _A, _A, _A, _A, types.int64[::1])
 
 
 @njit_serial
@@ -446,6 +512,29 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     -------
     (status, iterations, residual)
     """
+    if sy is None:
+        none = np.empty(0)
+        return fixed_point_linked(elastic_step_linked, None, variant, G, c, wa, wb, gamma_s,
+                                  sigma0, rtol, n_damp, max_iter, m_hist, omega, x_init,
+                                  out_area, out_sigma_a, out_g, out_u, out_load, out_det_area,
+                                  out_det_load, out_error, onset, theory, theory_gamma, none,
+                                  none, none)
+    return fixed_point_linked(yield_step_linked, None, variant, G, c, wa, wb, gamma_s, sigma0,
+                              rtol, n_damp, max_iter, m_hist, omega, x_init, out_area,
+                              out_sigma_a, out_g, out_u, out_load, out_det_area, out_det_load,
+                              out_error, onset, theory, theory_gamma, sy, out_pl, out_pl_load)
+
+
+def _fixed_point(step, grid, variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max_iter,
+                 m_hist, omega, x_init, out_area, out_sigma_a, out_g, out_u, out_load,
+                 out_det_area, out_det_load, out_error, onset, theory, theory_gamma, sy, out_pl,
+                 out_pl_load):
+    """:func:`solve_adhesive_one` with the diffusion solve ``step`` (:func:`elastic_step`, or
+    :func:`yield_step` with the yield wall ``sy``; an empty ``sy`` means none) given. Compiled
+    twice: :data:`fixed_point_linked`, inlined into compiled callers with ``step`` linked in
+    (the same code as a direct call), and :data:`fixed_point_calling`, which takes ``step``
+    by address (compiled and cached without the diffusion solver inside it)."""
+    has_yield = sy.shape[0] > 0
     n = G.shape[0]
     if sigma0 < 0.0 and omega > TENSION_OMEGA:
         omega = TENSION_OMEGA
@@ -474,7 +563,7 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
     extra = 0
     pl = np.zeros(n)
     pl_load = np.zeros(n)
-    if sy is not None:
+    if has_yield:
         real = np.empty(n)
     load = np.empty(n)
     det_a = np.empty(n)
@@ -518,32 +607,17 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         if corrected:
             for i in range(n):
                 T[i] = x[n + i] * G[n - 1]
-        if sy is not None:
-            if math.isinf(sy[0]):        # a yield wall the distribution cannot reach
-                if onset:
-                    kstat = wall_solve(variant, T, x[:n], g, sigma0, rtol_it, n_damp, area,
-                                       load, det_a, det_l, err, counts)
-                else:
-                    kstat = solve_variant(variant | SMOOTH_WALL, T, x[:n], sigma0, rtol_it,
-                                          np.int64(-1), n_damp, area, load, det_a, det_l,
-                                          err, counts)
-            else:
-                kstat = wall_solve_two(T, x[:n], g, sy, sigma0, rtol_it, onset, area, load,
-                                       pl, pl_load, det_a, det_l, err, counts)
+        kstat = step(grid, variant, T, x[:n], g, sy, sigma0, rtol_it, onset, n_damp, area, load,
+                     pl, pl_load, det_a, det_l, err, counts)
+        if has_yield:
             for i in range(n):
                 real[i] = area[i] + pl[i]
-        elif onset:
-            kstat = wall_solve(variant, T, x[:n], g, sigma0, rtol_it, n_damp, area, load,
-                               det_a, det_l, err, counts)
-        else:
-            kstat = solve_variant(variant | SMOOTH_WALL, T, x[:n], sigma0, rtol_it,
-                                  np.int64(-1), n_damp, area, load, det_a, det_l, err, counts)
         if kstat == st.NONFINITE or kstat == st.BAD_INPUT:
             status = kstat
             break
         # other flags (resolution cap, far leak, jump) of an intermediate iterate are not
         # fatal: the status of the final solve is what the result reports
-        if sy is not None:
+        if has_yield:
             yield_detachment_update(area, real, c, wa, wb, gamma_s, u, g, fx)
         else:
             detachment_update(area, c, wa, wb, gamma_s, u, g, fx)
@@ -704,34 +778,62 @@ def solve_adhesive_one(variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_damp, max
         out_det_area[i] = det_a[i]
         out_det_load[i] = det_l[i]
         out_error[i] = err[i]
-    if sy is not None:
+    if has_yield:
         for i in range(n):
             out_pl[i] = pl[i]
             out_pl_load[i] = pl_load[i]
     return status, it, residual
 
 
-def _adhesive_sweep(variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist,
-                    omega, x_init, area, sigma_a, g, u, load, det_area, det_load, error, status,
-                    iterations, residual, onset, theory, theory_gamma, sy, pl, pl_load):
-    """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,); sy
-    None (no yield wall) or (n_p, n_z) with outputs pl, pl_load (n_p, n_z)."""
+#: :func:`_fixed_point` for compiled callers (``step`` a ``*_step_linked``, ``grid`` None)
+fixed_point_linked = njit_inline(_fixed_point)
+#: :func:`_fixed_point` called from Python with ``step`` (:func:`elastic_step` or
+#: :func:`yield_step`) and ``grid`` (the grid solver) by address: compiled apart from the
+#: diffusion solver, which is compiled (and cached) on its own
+fixed_point_calling = CallingKernel(njit_serial(_fixed_point), (STEP_SIGNATURE, GRID_SIGNATURE))
+
+
+def _adhesive_sweep(step, grid, variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp,
+                    max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load, det_area,
+                    det_load, error, status, iterations, residual, onset, theory, theory_gamma,
+                    sy, pl, pl_load):
+    """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,); the
+    diffusion solve ``step`` with the grid solver ``grid`` (see :func:`_fixed_point`); a yield
+    wall sy (n_p, n_z) with the outputs pl, pl_load (n_p, n_z), or without one, sy, pl and
+    pl_load (n_p, 0)."""
     for k in prange(pressures.shape[0]):
-        if sy is None:
-            s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
-                                            n_damp, max_iter, m_hist, omega, x_init[k], area[k],
-                                            sigma_a[k], g[k], u[k], load[k], det_area[k],
-                                            det_load[k], error[k], onset, theory,
-                                            theory_gamma, None, None, None)
-        else:
-            s, it, res = solve_adhesive_one(variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
-                                            n_damp, max_iter, m_hist, omega, x_init[k], area[k],
-                                            sigma_a[k], g[k], u[k], load[k], det_area[k],
-                                            det_load[k], error[k], onset, theory,
-                                            theory_gamma, sy[k], pl[k], pl_load[k])
+        s, it, res = fixed_point_linked(step, grid, variant, G, c, wa, wb, gamma_s, pressures[k],
+                                        rtol, n_damp, max_iter, m_hist, omega, x_init[k],
+                                        area[k], sigma_a[k], g[k], u[k], load[k], det_area[k],
+                                        det_load[k], error[k], onset, theory, theory_gamma,
+                                        sy[k], pl[k], pl_load[k])
         status[k] = s
         iterations[k] = it
         residual[k] = res
 
 
-adhesive_sweep_serial, adhesive_sweep_parallel = njit_sweeps(_adhesive_sweep)
+#: the ``prange`` sweep (compiled per process; ``step`` a ``*_step_linked``, ``grid`` None)
+adhesive_sweep_parallel = njit_parallel(_adhesive_sweep)
+
+
+def adhesive_sweep_serial(step, grid, variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp,
+                          max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load, det_area,
+                          det_load, error, status, iterations, residual, onset, theory,
+                          theory_gamma, sy, pl, pl_load):
+    """:func:`_adhesive_sweep` row by row through :data:`fixed_point_calling` (``step``
+    :func:`elastic_step` or :func:`yield_step`, ``grid`` the grid solver), the cached code;
+    the kernel releases the GIL, so blocks of rows run on threads. The same arithmetic as the
+    ``prange`` sweep."""
+    n_p = pressures.shape[0]
+    if n_p == 0:
+        return
+    rows = (x_init, area, sigma_a, g, u, load, det_area, det_load, error)
+    call = fixed_point_calling.entry(step, grid, variant, G, c, wa, wb, gamma_s, pressures[0],
+                                     rtol, n_damp, max_iter, m_hist, omega,
+                                     *[r[0] for r in rows], onset, theory, theory_gamma,
+                                     sy[0], pl[0], pl_load[0])
+    for k in range(n_p):
+        status[k], iterations[k], residual[k] = call(
+            step, grid, variant, G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp, max_iter,
+            m_hist, omega, *[r[k] for r in rows], onset, theory, theory_gamma, sy[k], pl[k],
+            pl_load[k])

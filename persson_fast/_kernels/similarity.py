@@ -44,6 +44,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba import types
 
 from .._jit import njit_inline, njit_serial
 from . import status as st
@@ -706,12 +707,22 @@ def solve_variant(variant, G, sa, sigma0, rtol, level, n_damp, out_area, out_loa
     kink detection of :func:`_first_kink` (the adhesive fixed point and its pull-off branch:
     their wall is a node interpolant in zeta whose error the zeta ladder controls).
     """
+    return solve_variant_by(_solve_grid_tol, variant, G, sa, sigma0, rtol, level, n_damp,
+                            out_area, out_load, out_det_area, out_det_load, out_error, counts)
+
+
+@njit_inline
+def solve_variant_by(grid, variant, G, sa, sigma0, rtol, level, n_damp, out_area, out_load,
+                     out_det_area, out_det_load, out_error, counts):
+    """:func:`solve_variant` through ``grid``: :func:`_solve_grid_tol` itself, or passed by
+    address (a first-class function of :data:`GRID_SIGNATURE`, see
+    :class:`persson_fast._jit.CallingKernel`)."""
     detect = (variant & SMOOTH_WALL) == 0
     base = variant if detect else variant - SMOOTH_WALL
     sx, stp, theta, extrapolate, work_max = variant_resolution(base, rtol, level)
-    return _solve_grid_tol(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp,
-                           rtol if level < 0 else 0.0, out_area, out_load, out_det_area,
-                           out_det_load, out_error, counts, detect)
+    return grid(G, sa, sigma0, sx, stp, theta, extrapolate, work_max, n_damp,
+                rtol if level < 0 else 0.0, out_area, out_load, out_det_area, out_det_load,
+                out_error, counts, detect)
 
 
 @njit_serial
@@ -1134,3 +1145,11 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
         if not math.isfinite(a):
             status = st.NONFINITE
     return status
+
+
+#: the signature of :func:`_solve_grid_tol` as :func:`solve_variant_by` calls it, by which
+#: kernels compiled apart from it take it by address
+_A = types.float64[::1]
+GRID_SIGNATURE = types.int64(_A, _A, types.float64, types.float64, types.float64,
+                             types.float64, types.boolean, types.float64, types.int64,
+                             types.float64, _A, _A, _A, _A, _A, types.int64[::1], types.boolean)

@@ -1,0 +1,129 @@
+"""The adhesive fixed point compiled apart from the diffusion solver (issue 11, item 6).
+
+The cached fixed point takes its diffusion step, and the step the grid solver, by address
+(numba first-class functions, :class:`persson_fast._jit.CallingKernel`), so that each is
+compiled on its own, and on a cold cache the grid solver in a second process at once
+(:func:`persson_fast._jit.compile_beside`). What must hold:
+
+* the code called by address computes bitwise what the linked code computes (the
+  ``solve_adhesive_one`` entry point of :mod:`persson_fast.embed`, the ``prange`` sweep);
+* on a cold cache, a first adhesive solve loads the grid solver compiled by the second
+  process (a disk-cache hit, no compile of it here) and gives bitwise the in-process result;
+* with one usable CPU, or with everything compiled or cached, no second process starts.
+
+Compile times are measured by ``benchmarks/compile_time.py``, never here.
+"""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numba
+import numpy as np
+import pytest
+
+import persson_fast as pf
+from persson_fast import _jit
+from persson_fast import adhesion as adhesion_module
+from persson_fast._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP,
+                                            DEFAULT_OMEGA, solve_adhesive_one)
+from persson_fast._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
+from persson_fast.scene import DETACHMENT_PREFACTOR
+from persson_fast.zeta_grid import _scene_arrays, adhesion_zeta
+
+needs_jit = pytest.mark.skipif(numba.config.DISABLE_JIT, reason="compiled code only")
+
+PACKAGE_ROOT = str(Path(pf.__file__).resolve().parent.parent)
+SEED = pf.seed_scene()
+E_STAR = 2.9e9 / (1 - 0.3 ** 2)
+
+
+def _scene(rtol=1e-4):
+    z = adhesion_zeta(SEED, rtol)
+    G, c, wa, wb, scale, _ = _scene_arrays(SEED, z, E_STAR, 0.06, DETACHMENT_PREFACTOR)
+    return G, c, wa, wb, scale
+
+
+@needs_jit
+@pytest.mark.parametrize("onset", [True, False])
+def test_fixed_point_by_address_equals_the_linked_one(onset):
+    """The cached sweep (step and grid solver by address) and ``solve_adhesive_one`` (both
+    linked in), row by row: bitwise equal, in compression, at zero load and in tension."""
+    G, c, wa, wb, scale = _scene()
+    p = np.array([-0.5e6, 0.0, 1e6, 30e6, 100e6]) / scale
+    ctl = adhesion_module._controls(None)
+    outs, status, its, res, _ = adhesion_module._run(G, c, wa, wb, -1.0, p, 1e-4, False, ctl,
+                                                     onset=onset)
+    n = G.size
+    for k, sigma0 in enumerate(p):
+        o = [np.zeros(n) for _ in range(8)]
+        s, it, r = solve_adhesive_one(0, G, c, wa, wb, -1.0, sigma0, 1e-4, DEFAULT_N_DAMP,
+                                      DEFAULT_MAX_ITER, DEFAULT_M_HIST, DEFAULT_OMEGA,
+                                      np.full(n, -1.0), *o, onset)
+        assert (s, it, r) == (status[k], its[k], res[k])
+        for a, b in zip(o, outs):
+            np.testing.assert_array_equal(a, b[k])
+
+
+def test_no_second_process_with_one_cpu(monkeypatch):
+    monkeypatch.setattr(_jit, "_usable_cpus", lambda: 1)
+    assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
+
+
+@needs_jit
+def test_no_second_process_when_compiled_here():
+    _solve_grid_tol.compile(GRID_SIGNATURE)
+    assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
+
+
+def test_signature_must_be_a_module_name():
+    if numba.config.DISABLE_JIT:
+        pytest.skip("compiled code only")
+    sig = numba.types.int64(numba.types.float64)     # not a name of the kernel's module
+    with pytest.raises(ValueError, match="module-level name"):
+        _jit.compile_beside([(_solve_grid_tol, sig)])
+
+
+CHILD = r"""
+import json, sys
+import numpy as np
+import persson_fast as pf
+from persson_fast import _jit
+from persson_fast._kernels.adhesion import elastic_step, fixed_point_calling
+from persson_fast._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
+before = _jit.in_disk_cache(_solve_grid_tol, GRID_SIGNATURE)
+r = pf.solve_contact(pf.seed_scene(), np.array([0.0, 1e6, 1e7, 1e8]),
+                     e_star=2.9e9 / (1 - 0.3 ** 2), work_of_adhesion=0.06, rtol=1e-4)
+def count(d):
+    return [sum(d.stats.cache_hits.values()), sum(d.stats.cache_misses.values())]
+print(json.dumps({"before": before, "after": _jit.in_disk_cache(_solve_grid_tol, GRID_SIGNATURE),
+                  "grid": count(_solve_grid_tol), "step": count(elastic_step),
+                  "fixed_point": count(fixed_point_calling), "area": r.area.tolist(),
+                  "cpus": _jit._usable_cpus()}))
+"""
+
+
+@needs_jit
+def test_cold_cache_compiles_the_grid_solver_in_a_second_process(tmp_path):
+    """A first adhesive solve on an empty cache: the grid solver comes from the disk cache,
+    written by the second process (a hit here, no miss), the fixed point and its step are
+    compiled here (misses); the areas bitwise those of this process. Then the cache holds
+    the grid solver."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([PACKAGE_ROOT, *filter(None, [env.get("PYTHONPATH")])])
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
+    proc = subprocess.run([sys.executable, "-c", CHILD], env=env, capture_output=True,
+                          text=True, timeout=600)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    rep = json.loads(proc.stdout.strip().splitlines()[-1])
+    want = pf.solve_contact(SEED, np.array([0.0, 1e6, 1e7, 1e8]), e_star=E_STAR,
+                            work_of_adhesion=0.06, rtol=1e-4).area
+    np.testing.assert_array_equal(rep["area"], want)
+    assert rep["before"] is False and rep["after"] is True
+    assert rep["fixed_point"][1] >= 1 and rep["step"][1] >= 1      # compiled here
+    if rep["cpus"] < 2:
+        pytest.skip("one usable CPU: everything compiles in one process")
+    assert rep["grid"] == [1, 0], rep                               # loaded, not compiled
