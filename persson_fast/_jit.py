@@ -33,7 +33,8 @@ import numpy as np
 from numba.core import caching, types
 
 __all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange",
-           "kernel_source_stamp", "CallingKernel", "in_disk_cache", "compile_beside"]
+           "kernel_source_stamp", "CallingKernel", "callable_with", "compile_for",
+           "in_disk_cache", "compile_beside"]
 
 prange = numba.prange
 
@@ -187,7 +188,7 @@ class CallingKernel:
                 if not with_callees:
                     return entry
                 for callee, sig in zip(args[:self._n], self.callee_signatures):
-                    callee.compile(sig)
+                    compile_for(callee, sig)
                 self._entries[key] = entry
         return entry
 
@@ -215,8 +216,15 @@ def callable_with(dispatcher, signature, callees=()):
     if not hasattr(dispatcher, "compile"):
         return dispatcher
     for callee, sig in callees:
-        callee.compile(sig)
-    return dispatcher.compile(signature)
+        compile_for(callee, sig)
+    return compile_for(dispatcher, signature)
+
+
+def compile_for(dispatcher, signature):
+    """``dispatcher.compile`` for the argument types of ``signature`` (its return type is
+    inferred): the disk-cache key is then the one numba uses when a compiled caller compiles
+    the same function (the argument types alone), so one cache entry serves both."""
+    return dispatcher.compile(tuple(signature.args))
 
 
 def njit_sweeps(func):
@@ -230,13 +238,13 @@ def njit_sweeps(func):
 
 
 def in_disk_cache(dispatcher, signature) -> bool:
-    """True when numba's disk cache holds ``dispatcher`` compiled for ``signature`` (as given
-    to ``dispatcher.compile``) with the current kernel sources; nothing is loaded. When the
+    """True when numba's disk cache holds ``dispatcher`` compiled for the argument types of
+    ``signature`` (:func:`compile_for`) with the current kernel sources; nothing is loaded. When the
     cache cannot be read this way (another numba version), True: the caller then compiles
     in this process, as it would anyway."""
     try:
         cache = dispatcher._cache
-        key = cache._index_key(signature, dispatcher.targetctx.codegen())
+        key = cache._index_key(tuple(signature.args), dispatcher.targetctx.codegen())
         return key in cache._cache_file._load_index()
     except Exception:
         return True
@@ -254,7 +262,7 @@ _WORKER = ("import importlib, sys\n"
            "for job in sys.argv[1:]:\n"
            "    module, name, sig = job.split(':')\n"
            "    m = importlib.import_module(module)\n"
-           "    getattr(m, name).compile(getattr(m, sig))\n")
+           "    getattr(m, name).compile(tuple(getattr(m, sig).args))\n")
 
 
 class _Beside:
@@ -299,7 +307,7 @@ def compile_beside(jobs):
         return None
     names = []
     for dispatcher, signature in jobs:
-        args = tuple(signature.args) if hasattr(signature, "args") else tuple(signature)
+        args = tuple(signature.args)
         if args in getattr(dispatcher, "overloads", {}) or in_disk_cache(dispatcher, signature):
             continue
         module = sys.modules[dispatcher.py_func.__module__]

@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ._jit import compile_beside
+from ._jit import compile_beside, compile_for
 from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
                                STEP_SIGNATURE, adhesive_sweep_parallel, adhesive_sweep_serial,
                                elastic_step, elastic_step_linked, fixed_point_calling,
@@ -113,7 +113,7 @@ def _compile_fixed_point(first):
     try:
         fixed_point_calling.compile_alone(*row)
         if hasattr(step, "compile"):             # not under NUMBA_DISABLE_JIT=1
-            step.compile(STEP_SIGNATURE)
+            compile_for(step, STEP_SIGNATURE)
     finally:
         if beside is not None:
             beside.wait()

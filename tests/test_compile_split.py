@@ -75,7 +75,7 @@ def test_no_second_process_with_one_cpu(monkeypatch):
 
 @needs_jit
 def test_no_second_process_when_compiled_here():
-    _solve_grid_tol.compile(GRID_SIGNATURE)
+    _jit.compile_for(_solve_grid_tol, GRID_SIGNATURE)
     assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
 
 
@@ -127,3 +127,42 @@ def test_cold_cache_compiles_the_grid_solver_in_a_second_process(tmp_path):
     if rep["cpus"] < 2:
         pytest.skip("one usable CPU: everything compiles in one process")
     assert rep["grid"] == [1, 0], rep                               # loaded, not compiled
+
+
+WARMUP_CHILD = r"""
+import json
+import persson_fast as pf
+from persson_fast import _jit
+from persson_fast._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
+started = []
+original = _jit.compile_beside
+def spy(jobs):
+    b = original(jobs)
+    started.append(b is not None)
+    return b
+_jit.compile_beside = spy
+import persson_fast.adhesion as adhesion
+adhesion.compile_beside = spy
+pf.warmup()
+print(json.dumps({"started": started,
+                  "grid_misses": sum(_solve_grid_tol.stats.cache_misses.values())}))
+"""
+
+
+@needs_jit
+def test_a_warm_cache_starts_no_second_process(tmp_path):
+    """``pf.warmup()`` twice on one cache: the first compiles the grid solver for the contact
+    sweep (linked in) before the adhesive kernels, the second finds everything in the cache
+    (the explicit compiles use numba's own key, the argument types), so it starts no second
+    process and compiles nothing."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([PACKAGE_ROOT, *filter(None, [env.get("PYTHONPATH")])])
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "cache")
+    reps = []
+    for _ in range(2):
+        proc = subprocess.run([sys.executable, "-c", WARMUP_CHILD], env=env,
+                              capture_output=True, text=True, timeout=900)
+        assert proc.returncode == 0, proc.stderr[-3000:]
+        reps.append(json.loads(proc.stdout.strip().splitlines()[-1]))
+    assert not any(reps[1]["started"]), reps
+    assert reps[1]["grid_misses"] == 0, reps
