@@ -224,6 +224,8 @@ def compile_for(dispatcher, signature):
     """``dispatcher.compile`` for the argument types of ``signature`` (its return type is
     inferred): the disk-cache key is then the one numba uses when a compiled caller compiles
     the same function (the argument types alone), so one cache entry serves both."""
+    if not hasattr(dispatcher, "compile"):              # NUMBA_DISABLE_JIT=1
+        return dispatcher
     return dispatcher.compile(tuple(signature.args))
 
 
@@ -257,9 +259,14 @@ def _usable_cpus() -> int:
         return os.cpu_count() or 1
 
 
-#: what the second process runs: compile module.name for module.signature_name, each job
+#: what the second process runs: the package's folder on its path (where this process found
+#: the package, unless the path has it already), then module.name compiled for the argument
+#: types of module.signature_name, for each job
 _WORKER = ("import importlib, sys\n"
-           "for job in sys.argv[1:]:\n"
+           "root = sys.argv[1]\n"
+           "if root not in sys.path:\n"
+           "    sys.path.insert(0, root)\n"
+           "for job in sys.argv[2:]:\n"
            "    module, name, sig = job.split(':')\n"
            "    m = importlib.import_module(module)\n"
            "    getattr(m, name).compile(tuple(getattr(m, sig).args))\n")
@@ -269,12 +276,7 @@ class _Beside:
     """A second Python process compiling kernels into the shared disk cache."""
 
     def __init__(self, jobs):
-        env = dict(os.environ)
-        # the same package as this process, whatever the working directory
-        root = str(_PACKAGE.parent)
-        env["PYTHONPATH"] = root + (os.pathsep + env["PYTHONPATH"] if env.get("PYTHONPATH")
-                                    else "")
-        self.proc = subprocess.Popen([sys.executable, "-c", _WORKER, *jobs], env=env,
+        self.proc = subprocess.Popen([sys.executable, "-c", _WORKER, str(_PACKAGE.parent), *jobs],
                                      stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
                                      stderr=subprocess.DEVNULL)
 
@@ -286,9 +288,13 @@ class _Beside:
         except subprocess.TimeoutExpired:
             return False
         finally:
-            if self.proc.poll() is None:
-                self.proc.kill()
-                self.proc.wait()
+            self.stop()
+
+    def stop(self) -> None:
+        """End the second process now if it still runs (an interrupted caller)."""
+        if self.proc.poll() is None:
+            self.proc.kill()
+            self.proc.wait()
 
 
 def compile_beside(jobs):

@@ -22,9 +22,9 @@ import numpy as np
 
 from ._jit import compile_beside, compile_for
 from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
-                               STEP_SIGNATURE, adhesive_sweep_parallel, adhesive_sweep_serial,
-                               elastic_step, elastic_step_linked, fixed_point_calling,
-                               yield_step, yield_step_linked)
+                               FIXED_POINT_SIGNATURE, STEP_SIGNATURE, adhesive_sweep_parallel,
+                               adhesive_sweep_serial, elastic_step, elastic_step_linked,
+                               fixed_point, yield_step, yield_step_linked)
 from ._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
 from ._kernels.status import NOT_CONVERGED, RTOL_NOT_MET
 from ._kernels.theories import WM17, YP08
@@ -67,11 +67,11 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
         x_init = np.full((n_p, n_z), -1.0)
     mode = choose_parallel(parallel, n_p)
     if mode == "prange":                 # compiled per process: the solvers linked in
-        kernel, callees = adhesive_sweep_parallel, [LINKED_STEPS[step], None]
+        kernel, callees = adhesive_sweep_parallel, [fixed_point, LINKED_STEPS[step], None]
     else:
-        kernel, callees = adhesive_sweep_serial, [step, _solve_grid_tol]
+        kernel, callees = adhesive_sweep_serial, [fixed_point, step, _solve_grid_tol]
     timings = {}
-    if not is_compiled(adhesive_sweep_parallel if mode == "prange" else fixed_point_calling):
+    if not is_compiled(kernel):
         t0 = time.perf_counter()
         first = [*callees, variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"],
                  2, controls["m_hist"], controls["omega"], x_init[:1],
@@ -90,8 +90,8 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
             np.ascontiguousarray(x_init), *outs[:8], status, iterations, residual, bool(onset),
             int(theory), float(theory_gamma), *yield_args]
     t0 = time.perf_counter()
-    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args, (8, 14, 29),
-             tuple(range(15, 26)) + (30, 31), n_p, parallel)
+    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args, (9, 15, 30),
+             tuple(range(16, 27)) + (31, 32), n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
     return outs, status, iterations, residual, timings
 
@@ -102,21 +102,21 @@ LINKED_STEPS = {elastic_step: elastic_step_linked, yield_step: yield_step_linked
 
 
 def _compile_fixed_point(first):
-    """Compile (or load) the cached fixed point and its diffusion step for the arguments of
-    one row: on a cold cache the step (the diffusion solver, the larger share) in a second
-    process while this one compiles the fixed point (:func:`persson_fast._jit.compile_beside`)."""
-    step = first[0]
+    """Compile (or load) the cached sweep, the fixed point and its diffusion step for the
+    arguments ``first`` of a one-row sweep: on a cold cache the grid solver (the larger share)
+    in a second process while this one compiles the rest
+    (:func:`persson_fast._jit.compile_beside`)."""
     beside = compile_beside([(_solve_grid_tol, GRID_SIGNATURE)])
-    # one row of the sweep's arguments: the fixed point's (no status, iterations, residual)
-    rows = (8, 14, 15, 16, 17, 18, 19, 20, 21, 22, 29, 30, 31)
-    row = [a[0] if i in rows else a for i, a in enumerate(first) if i not in (23, 24, 25)]
     try:
-        fixed_point_calling.compile_alone(*row)
-        if hasattr(step, "compile"):             # not under NUMBA_DISABLE_JIT=1
-            compile_for(step, STEP_SIGNATURE)
-    finally:
+        compile_for(fixed_point, FIXED_POINT_SIGNATURE)
+        compile_for(first[1], STEP_SIGNATURE)
+        adhesive_sweep_serial.compile_alone(*first)
+    except BaseException:                 # interrupted, or a compile failed: do not wait
         if beside is not None:
-            beside.wait()
+            beside.stop()
+        raise
+    if beside is not None:
+        beside.wait()
 
 
 def warm_adhesion(prange: bool = False) -> None:

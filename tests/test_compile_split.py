@@ -92,7 +92,7 @@ import json, sys
 import numpy as np
 import persson_fast as pf
 from persson_fast import _jit
-from persson_fast._kernels.adhesion import elastic_step, fixed_point_calling
+from persson_fast._kernels.adhesion import elastic_step, fixed_point
 from persson_fast._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
 before = _jit.in_disk_cache(_solve_grid_tol, GRID_SIGNATURE)
 r = pf.solve_contact(pf.seed_scene(), np.array([0.0, 1e6, 1e7, 1e8]),
@@ -101,7 +101,7 @@ def count(d):
     return [sum(d.stats.cache_hits.values()), sum(d.stats.cache_misses.values())]
 print(json.dumps({"before": before, "after": _jit.in_disk_cache(_solve_grid_tol, GRID_SIGNATURE),
                   "grid": count(_solve_grid_tol), "step": count(elastic_step),
-                  "fixed_point": count(fixed_point_calling), "area": r.area.tolist(),
+                  "fixed_point": count(fixed_point), "area": r.area.tolist(),
                   "cpus": _jit._usable_cpus()}))
 """
 

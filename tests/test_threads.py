@@ -89,12 +89,13 @@ def digest(res):
 def cache_stats():
     """Disk-cache hits and misses of the cached kernels the sweeps run in this process: the
     contact sweep, and the adhesive fixed point with the two it calls by address."""
-    from persson_fast._kernels.adhesion import elastic_step, fixed_point_calling
+    from persson_fast._kernels.adhesion import adhesive_sweep_serial, elastic_step, fixed_point
     from persson_fast._kernels.similarity import _solve_grid_tol
     from persson_fast._kernels.sweep import sweep_serial
     out = {}
-    for name, kernel in (("sweep", sweep_serial), ("adhesive", fixed_point_calling),
-                         ("adhesive step", elastic_step), ("grid", _solve_grid_tol)):
+    for name, kernel in (("sweep", sweep_serial), ("adhesive", adhesive_sweep_serial),
+                         ("fixed point", fixed_point), ("adhesive step", elastic_step),
+                         ("grid", _solve_grid_tol)):
         stats = kernel.stats
         out[name] = {"hits": sum(stats.cache_hits.values()),
                      "misses": sum(stats.cache_misses.values())}
@@ -428,7 +429,7 @@ def test_warmup_prange_reaches_the_adhesive_prange_sweep(monkeypatch):
     by a recorder: nothing is compiled here."""
     calls = []
     monkeypatch.setattr(adhesion_module, "adhesive_sweep_parallel",
-                        lambda *args: calls.append(len(args[8])))
+                        lambda *args: calls.append(len(args[9])))
     adhesion_module.warm_adhesion(prange=True)     # what pf.warmup(prange=True) calls
     assert calls, "warmup(prange=True) never called the adhesive prange sweep"
 
@@ -459,7 +460,7 @@ def test_processes_share_a_cold_then_warm_cache(tmp_path):
     warm, warm_wall = run_at_once(3, "solve", spec, env)
     check_reports(warm, modes, want)
     for rep in warm:
-        for kernel in ("sweep", "adhesive", "adhesive step", "grid"):
+        for kernel in ("sweep", "adhesive", "fixed point", "adhesive step", "grid"):
             assert rep["cache"][kernel]["misses"] == 0 < rep["cache"][kernel]["hits"], rep["cache"]
     walls = [[round(r["wall"], 2) for r in reps] for reps in (cold, warm)]
     loads = [round(sum(x["compile"] for x in r["rows"]), 2) for r in warm]

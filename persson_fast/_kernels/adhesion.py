@@ -530,10 +530,11 @@ def _fixed_point(step, grid, variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_dam
                  out_det_area, out_det_load, out_error, onset, theory, theory_gamma, sy, out_pl,
                  out_pl_load):
     """:func:`solve_adhesive_one` with the diffusion solve ``step`` (:func:`elastic_step`, or
-    :func:`yield_step` with the yield wall ``sy``; an empty ``sy`` means none) given. Compiled
-    twice: :data:`fixed_point_linked`, inlined into compiled callers with ``step`` linked in
-    (the same code as a direct call), and :data:`fixed_point_calling`, which takes ``step``
-    by address (compiled and cached without the diffusion solver inside it)."""
+    :func:`yield_step` with the yield wall ``sy``; an empty ``sy`` means none) and the grid
+    solver ``grid`` given. Compiled as :data:`fixed_point_linked`, inlined into compiled
+    callers with ``step`` linked in (the same code as a direct call), and as
+    :data:`fixed_point`, which takes ``step`` and ``grid`` by address (compiled and cached
+    without the diffusion solver inside it)."""
     has_yield = sy.shape[0] > 0
     n = G.shape[0]
     if sigma0 < 0.0 and omega > TENSION_OMEGA:
@@ -787,53 +788,40 @@ def _fixed_point(step, grid, variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_dam
 
 #: :func:`_fixed_point` for compiled callers (``step`` a ``*_step_linked``, ``grid`` None)
 fixed_point_linked = njit_inline(_fixed_point)
-#: :func:`_fixed_point` called from Python with ``step`` (:func:`elastic_step` or
-#: :func:`yield_step`) and ``grid`` (the grid solver) by address: compiled apart from the
-#: diffusion solver, which is compiled (and cached) on its own
-fixed_point_calling = CallingKernel(njit_serial(_fixed_point), (STEP_SIGNATURE, GRID_SIGNATURE))
+#: :func:`_fixed_point` compiled on its own, for :data:`FIXED_POINT_SIGNATURE`: ``step``
+#: (:func:`elastic_step` or :func:`yield_step`) and ``grid`` (the grid solver) by address,
+#: so that it is compiled apart from the diffusion solver (which is compiled and cached on
+#: its own); the ``prange`` sweep compiles it with linked ones instead
+fixed_point = njit_serial(_fixed_point)
+FIXED_POINT_SIGNATURE = types.Tuple((types.int64, types.int64, types.float64))(
+    types.FunctionType(STEP_SIGNATURE), types.FunctionType(GRID_SIGNATURE), types.int64, _A, _A,
+    _A, _A, types.float64, types.float64, types.float64, types.int64, types.int64, types.int64,
+    types.float64, _A, _A, _A, _A, _A, _A, _A, _A, _A, types.boolean, types.int64,
+    types.float64, _A, _A, _A)
 
 
-def _adhesive_sweep(step, grid, variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp,
-                    max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load, det_area,
-                    det_load, error, status, iterations, residual, onset, theory, theory_gamma,
-                    sy, pl, pl_load):
-    """All pressures; x_init and outputs (n_p, n_z), status/iterations/residual (n_p,); the
-    diffusion solve ``step`` with the grid solver ``grid`` (see :func:`_fixed_point`); a yield
-    wall sy (n_p, n_z) with the outputs pl, pl_load (n_p, n_z), or without one, sy, pl and
-    pl_load (n_p, 0)."""
+def _adhesive_sweep(fixed_point, step, grid, variant, G, c, wa, wb, gamma_s, pressures, rtol,
+                    n_damp, max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load,
+                    det_area, det_load, error, status, iterations, residual, onset, theory,
+                    theory_gamma, sy, pl, pl_load):
+    """All pressures through :func:`_fixed_point` (``fixed_point``) with the diffusion solve
+    ``step`` and the grid solver ``grid``; x_init and outputs (n_p, n_z),
+    status/iterations/residual (n_p,); a yield wall sy (n_p, n_z) with the outputs pl,
+    pl_load (n_p, n_z), or without one, sy, pl and pl_load (n_p, 0)."""
     for k in prange(pressures.shape[0]):
-        s, it, res = fixed_point_linked(step, grid, variant, G, c, wa, wb, gamma_s, pressures[k],
-                                        rtol, n_damp, max_iter, m_hist, omega, x_init[k],
-                                        area[k], sigma_a[k], g[k], u[k], load[k], det_area[k],
-                                        det_load[k], error[k], onset, theory, theory_gamma,
-                                        sy[k], pl[k], pl_load[k])
+        s, it, res = fixed_point(step, grid, variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
+                                 n_damp, max_iter, m_hist, omega, x_init[k], area[k],
+                                 sigma_a[k], g[k], u[k], load[k], det_area[k], det_load[k],
+                                 error[k], onset, theory, theory_gamma, sy[k], pl[k],
+                                 pl_load[k])
         status[k] = s
         iterations[k] = it
         residual[k] = res
 
 
-#: the ``prange`` sweep (compiled per process; ``step`` a ``*_step_linked``, ``grid`` None)
+#: the cached sweep: :data:`fixed_point`, the step and the grid solver all by address (so it
+#: is compiled without them, a loop of calls); the ``prange`` sweep (compiled per process) is
+#: given :data:`fixed_point` with a ``*_step_linked`` and ``grid`` None, all linked in
+adhesive_sweep_serial = CallingKernel(njit_serial(_adhesive_sweep),
+                                      (FIXED_POINT_SIGNATURE, STEP_SIGNATURE, GRID_SIGNATURE))
 adhesive_sweep_parallel = njit_parallel(_adhesive_sweep)
-
-
-def adhesive_sweep_serial(step, grid, variant, G, c, wa, wb, gamma_s, pressures, rtol, n_damp,
-                          max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load, det_area,
-                          det_load, error, status, iterations, residual, onset, theory,
-                          theory_gamma, sy, pl, pl_load):
-    """:func:`_adhesive_sweep` row by row through :data:`fixed_point_calling` (``step``
-    :func:`elastic_step` or :func:`yield_step`, ``grid`` the grid solver), the cached code;
-    the kernel releases the GIL, so blocks of rows run on threads. The same arithmetic as the
-    ``prange`` sweep."""
-    n_p = pressures.shape[0]
-    if n_p == 0:
-        return
-    rows = (x_init, area, sigma_a, g, u, load, det_area, det_load, error)
-    call = fixed_point_calling.entry(step, grid, variant, G, c, wa, wb, gamma_s, pressures[0],
-                                     rtol, n_damp, max_iter, m_hist, omega,
-                                     *[r[0] for r in rows], onset, theory, theory_gamma,
-                                     sy[0], pl[0], pl_load[0])
-    for k in range(n_p):
-        status[k], iterations[k], residual[k] = call(
-            step, grid, variant, G, c, wa, wb, gamma_s, pressures[k], rtol, n_damp, max_iter,
-            m_hist, omega, *[r[k] for r in rows], onset, theory, theory_gamma, sy[k], pl[k],
-            pl_load[k])
