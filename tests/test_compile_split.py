@@ -79,11 +79,25 @@ def test_no_second_process_when_compiled_here():
     assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
 
 
+def test_second_process_compiles_by_module_names(monkeypatch):
+    """The jobs reach the second process as names: a dispatcher is found under the name it
+    has in its module (``fixed_point`` is ``_fixed_point`` compiled), its signature too."""
+    if numba.config.DISABLE_JIT:
+        pytest.skip("compiled code only")
+    from persson_fast._kernels import adhesion as kernels
+
+    names = []
+    monkeypatch.setattr(_jit, "_needs_compile", lambda dispatcher, signature: True)
+    monkeypatch.setattr(_jit, "_Beside", lambda jobs: names.extend(jobs) or "started")
+    assert _jit.compile_beside([(kernels.fixed_point, kernels.FIXED_POINT_SIGNATURE)]) == "started"
+    assert names == ["persson_fast._kernels.adhesion:fixed_point:FIXED_POINT_SIGNATURE"]
+
+
 def test_signature_must_be_a_module_name():
     if numba.config.DISABLE_JIT:
         pytest.skip("compiled code only")
     sig = numba.types.int64(numba.types.float64)     # not a name of the kernel's module
-    with pytest.raises(ValueError, match="module-level name"):
+    with pytest.raises(ValueError, match="module-level names"):
         _jit.compile_beside([(_solve_grid_tol, sig)])
 
 
