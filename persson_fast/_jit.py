@@ -11,10 +11,11 @@
 * thin wrappers: ``inline="always"`` (:func:`njit_inline`), which spares compiled callers a
   call boundary (numba finalises every function with its callees linked in and optimised
   again, so each boundary re-optimises everything below it);
-* the reverse, for a large callee under a large caller: the callee passed by address as a
-  numba first-class function argument (:class:`CallingKernel`, :func:`callable_with`), so
-  the caller is compiled without the callee's code inside it and the two are compiled (and
-  cached) apart; on a cold cache the larger part can then compile in a second process at
+* the reverse, for a large callee under a large caller: the callee called by address (a
+  numba first-class function, made in the kernel from an integer jit address:
+  :class:`CallingKernel`, :func:`function_at`; or passed from Python: :func:`callable_with`),
+  so the caller is compiled without the callee's code inside it and the two are compiled
+  (and cached) apart; on a cold cache the larger part can then compile in a second process at
   the same time (:func:`compile_beside`). The adhesive sweep is built so: sweep, fixed point,
   diffusion step and grid solver are four compile units (measured on 2 cores: the grid
   solver alone 7.2 s, everything above it 5 s, where one unit with the solver inside each
@@ -26,22 +27,32 @@ which is how line coverage is measured honestly.
 """
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import os
 import subprocess
 import sys
 import threading
+import warnings
 from pathlib import Path
 
 import numba
 import numpy as np
-from numba.core import caching, types
+from numba.core import caching, cgutils, types
+from numba.extending import intrinsic
 
 __all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange",
-           "kernel_source_stamp", "CallingKernel", "callable_with", "compile_for",
-           "in_disk_cache", "compile_beside"]
+           "kernel_source_stamp", "CallingKernel", "function_at", "jit_address",
+           "callable_with", "compile_for", "in_disk_cache", "compile_beside",
+           "compiling_beside"]
 
 prange = numba.prange
+
+#: numba marks first-class functions experimental and says so when it compiles one; the
+#: package's own kernels use them on purpose (tested: bitwise equal to the linked code), so
+#: the note is silenced for warnings located in the package's files only
+warnings.filterwarnings("ignore", category=numba.core.errors.NumbaExperimentalFeatureWarning,
+                        module=r".*persson_fast[/\\.]")
 
 _PACKAGE = Path(__file__).resolve().parent
 #: every file that holds compiled code: a cached kernel is stale when any of them changes
@@ -144,23 +155,64 @@ def _fingerprint(value):
     return type(value)
 
 
+def function_at(signature):
+    """An intrinsic that makes the numba first-class function of ``signature`` from the jit
+    address of a compiled function (an integer, :func:`jit_address`): the kernel is then
+    called through the function's own entry point (numba's calling convention, so its
+    exceptions propagate). Under ``NUMBA_DISABLE_JIT`` the identity (the callee itself is
+    passed)."""
+    if numba.config.DISABLE_JIT:
+        return lambda callee: callee
+    ftype = types.FunctionType(signature)
+
+    @intrinsic
+    def at(typingctx, address):
+        if not isinstance(address, types.Integer):
+            return None
+
+        def codegen(context, builder, sig, args):
+            fn = cgutils.create_struct_proxy(ftype)(context, builder)
+            fn.jit_addr = builder.inttoptr(args[0], context.get_value_type(types.voidptr))
+            return fn._getvalue()
+
+        return ftype(address), codegen
+
+    return at
+
+
+_addresses = {}
+
+
+def jit_address(dispatcher, signature) -> int:
+    """The address of ``dispatcher`` compiled (or loaded) for the argument types of
+    ``signature``, in numba's calling convention (kept per process: a dispatcher keeps its
+    compiled code alive)."""
+    key = (dispatcher, signature)
+    address = _addresses.get(key)
+    if address is None:
+        from numba.experimental.function_type import _get_jit_address
+
+        compile_for(dispatcher, signature)
+        address = _addresses[key] = _get_jit_address(dispatcher, signature)
+    return address
+
+
 class CallingKernel:
-    """A cached kernel whose first arguments are other compiled functions, called by address
-    (numba first-class functions of the signatures ``callee_signatures``, one per leading
-    argument).
+    """A cached kernel whose first arguments are other compiled functions, called by address.
 
     numba links every compiled callee into its caller and optimises and generates the machine
     code of the whole again, so a kernel above the diffusion solver pays for the solver's
-    code again on the first call on a machine. Passed as first-class functions, the callees
-    are compiled (and cached) on their own, the caller without them, and on a cold cache in
-    two processes at once (:func:`compile_beside`). The call goes through the callee's own
-    entry point (numba's calling convention: its exceptions propagate), which costs nothing
-    measurable against a diffusion solve. Called as ``kernel(*callees, *args)`` with
-    dispatchers; each new combination of argument types is compiled (or loaded from the disk
-    cache) once, for the exact types given, and each callee for its signature. The same body
-    may also be compiled as an ordinary (inlined) function for compiled callers, with the
-    callees linked in: numba generates the same arithmetic either way (no fast-math, no
-    reassociation).
+    code again on the first call on a machine. Called by address, the callees are compiled
+    (and cached) on their own, the caller without them, and on a cold cache in two processes
+    at once (:func:`compile_beside`). ``dispatcher`` takes the callees' jit addresses
+    (integers; its body makes them first-class functions with :func:`function_at`, one per
+    signature of ``callee_signatures``), so a call passes plain integers: numba's own
+    first-class function arguments cost about 30 us each to unbox from a dispatcher, paid
+    under the GIL on every call. Called as ``kernel(*callees, *args)`` with dispatchers;
+    each new combination of argument types is compiled (or loaded from the disk cache) once,
+    for the exact types given, and each callee for its signature. The same body may also be
+    compiled as an ordinary function for compiled callers, with the callees linked in: numba
+    generates the same arithmetic either way (no fast-math, no reassociation).
     """
 
     def __init__(self, dispatcher, callee_signatures):
@@ -182,35 +234,27 @@ class CallingKernel:
     def py_func(self):
         return getattr(self.dispatcher, "py_func", self.dispatcher)
 
-    def _entry(self, args, with_callees=True):
-        key = tuple(args[:self._n]) + tuple(_fingerprint(a) for a in args[self._n:])
+    def _entry(self, args):
+        key = tuple(_fingerprint(a) for a in args)
         entry = self._entries.get(key)
         if entry is None:
             with self._lock:
-                signature = (tuple(types.FunctionType(s) for s in self.callee_signatures)
-                             + tuple(numba.typeof(a) for a in args[self._n:]))
-                entry = self.dispatcher.compile(signature)
-                if not with_callees:
-                    return entry
-                for callee, sig in zip(args[:self._n], self.callee_signatures):
-                    compile_for(callee, sig)
-                self._entries[key] = entry
+                signature = (types.int64,) * self._n + tuple(numba.typeof(a) for a in args)
+                entry = self._entries[key] = self.dispatcher.compile(signature)
         return entry
 
-    def entry(self, *args):
-        """The compiled function for these arguments' types, to be called with the same
-        arguments (saves the type lookup of :meth:`__call__` in a loop)."""
-        if not hasattr(self.dispatcher, "compile"):      # NUMBA_DISABLE_JIT=1
-            return self.dispatcher
-        return self._entry(args)
-
     def compile_alone(self, *args):
-        """Compile (or load) the kernel for these arguments' types, but not its callees."""
+        """Compile (or load) the kernel for these arguments' types (callees first, as in a
+        call), but not its callees."""
         if hasattr(self.dispatcher, "compile"):
-            self._entry(args, with_callees=False)
+            self._entry(args[self._n:])
 
     def __call__(self, *args):
-        return self.entry(*args)(*args)
+        callees, rest = args[:self._n], args[self._n:]
+        if not hasattr(self.dispatcher, "compile"):      # NUMBA_DISABLE_JIT=1
+            return self.dispatcher(*callees, *rest)
+        addresses = [jit_address(c, s) for c, s in zip(callees, self.callee_signatures)]
+        return self._entry(rest)(*addresses, *rest)
 
 
 def callable_with(dispatcher, signature, callees=()):
@@ -339,3 +383,19 @@ def compile_beside(jobs):
         return _Beside(names)
     except OSError:
         return None
+
+
+@contextlib.contextmanager
+def compiling_beside(jobs):
+    """``with compiling_beside(jobs):`` -- :func:`compile_beside` while the body compiles other
+    kernels, then wait for the second process (stop it at once if the body raises, e.g. on
+    Ctrl-C); afterwards the jobs' kernels load from the disk cache."""
+    beside = compile_beside(jobs)
+    try:
+        yield beside
+    except BaseException:
+        if beside is not None:
+            beside.stop()
+        raise
+    if beside is not None:
+        beside.wait()

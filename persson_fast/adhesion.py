@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ._jit import compile_beside, compile_for
+from ._jit import compile_for, compiling_beside
 from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
                                FIXED_POINT_SIGNATURE, STEP_SIGNATURE, adhesive_sweep_parallel,
                                adhesive_sweep_serial, elastic_step, elastic_step_linked,
@@ -106,17 +106,15 @@ def _compile_fixed_point(first):
     arguments ``first`` of a one-row sweep: on a cold cache the grid solver (the larger share)
     in a second process while this one compiles the rest
     (:func:`persson_fast._jit.compile_beside`)."""
-    beside = compile_beside([(_solve_grid_tol, GRID_SIGNATURE)])
-    try:
+    with compiling_beside([(_solve_grid_tol, GRID_SIGNATURE)]):
         compile_for(fixed_point, FIXED_POINT_SIGNATURE)
         compile_for(first[1], STEP_SIGNATURE)
         adhesive_sweep_serial.compile_alone(*first)
-    except BaseException:                 # interrupted, or a compile failed: do not wait
-        if beside is not None:
-            beside.stop()
-        raise
-    if beside is not None:
-        beside.wait()
+
+
+#: what :func:`persson_fast.warmup` compiles in a second process on a cold cache while it
+#: compiles the contact sweeps (with the grid solver): the adhesive fixed point and its step
+ADHESIVE_JOBS = [(fixed_point, FIXED_POINT_SIGNATURE), (elastic_step, STEP_SIGNATURE)]
 
 
 def warm_adhesion(prange: bool = False) -> None:

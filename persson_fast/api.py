@@ -11,8 +11,9 @@ from . import analytic
 from ._kernels.status import GRID_CAP, LOST_CONTACT
 from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
                           check_nondecreasing, check_nonnegative, wall_rows)
-from .adhesion import (solve_adhesive_contact, warm_adhesion, warm_adhesive_yield,
-                       yield_wall_on)
+from ._jit import compiling_beside
+from .adhesion import (ADHESIVE_JOBS, solve_adhesive_contact, warm_adhesion,
+                       warm_adhesive_yield, yield_wall_on)
 from .methods import check_method, check_serves, choose_auto
 from .results import (ContactResult, Deferred, DiffusionResult, per_contact_area,
                       summarize_status)
@@ -43,7 +44,9 @@ def warmup(prange: bool = False) -> dict:
     numba's ``prange`` sweeps (only used with ``parallel="prange"``; not cached on disk, so
     compiled once per process).
     """
-    timings = warm_sweeps(prange)
+    # on a cold cache the adhesive fixed point compiles in a second process meanwhile
+    with compiling_beside(ADHESIVE_JOBS):
+        timings = warm_sweeps(prange)
     t0 = time.perf_counter()
     warm_adhesion(prange)
     timings["adhesion"] = time.perf_counter() - t0

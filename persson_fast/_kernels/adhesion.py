@@ -34,7 +34,7 @@ import numpy as np
 
 from numba import types
 
-from .._jit import CallingKernel, njit_inline, njit_parallel, njit_serial, prange
+from .._jit import CallingKernel, function_at, njit_inline, njit_parallel, njit_serial, prange
 from . import status as st
 from .schedule import fill_state
 from .similarity import GRID_SIGNATURE, SMOOTH_WALL, _solve_grid_tol, solve_variant_by
@@ -819,9 +819,27 @@ def _adhesive_sweep(fixed_point, step, grid, variant, G, c, wa, wb, gamma_s, pre
         residual[k] = res
 
 
+_FIXED_POINT_AT = function_at(FIXED_POINT_SIGNATURE)
+_STEP_AT = function_at(STEP_SIGNATURE)
+_GRID_AT = function_at(GRID_SIGNATURE)
+_adhesive_rows = njit_serial(_adhesive_sweep)
+
+
+def _adhesive_sweep_at(fixed_point, step, grid, variant, G, c, wa, wb, gamma_s, pressures,
+                       rtol, n_damp, max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load,
+                       det_area, det_load, error, status, iterations, residual, onset, theory,
+                       theory_gamma, sy, pl, pl_load):
+    """:func:`_adhesive_sweep` with the three functions given by their jit addresses
+    (:class:`persson_fast._jit.CallingKernel`)."""
+    _adhesive_rows(_FIXED_POINT_AT(fixed_point), _STEP_AT(step), _GRID_AT(grid), variant, G, c,
+                   wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist, omega, x_init,
+                   area, sigma_a, g, u, load, det_area, det_load, error, status, iterations,
+                   residual, onset, theory, theory_gamma, sy, pl, pl_load)
+
+
 #: the cached sweep: :data:`fixed_point`, the step and the grid solver all by address (so it
 #: is compiled without them, a loop of calls); the ``prange`` sweep (compiled per process) is
 #: given :data:`fixed_point` with a ``*_step_linked`` and ``grid`` None, all linked in
-adhesive_sweep_serial = CallingKernel(njit_serial(_adhesive_sweep),
+adhesive_sweep_serial = CallingKernel(njit_serial(_adhesive_sweep_at),
                                       (FIXED_POINT_SIGNATURE, STEP_SIGNATURE, GRID_SIGNATURE))
 adhesive_sweep_parallel = njit_parallel(_adhesive_sweep)
