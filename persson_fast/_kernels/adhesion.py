@@ -374,17 +374,24 @@ def elastic_step(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, 
                           det_a, det_l, err, counts)
 
 
+@njit_inline
+def _yield_solve(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load, pl,
+                 pl_load, det_a, det_l, err, counts):
+    if math.isinf(sy[0]):
+        return _elastic_solve(grid, variant, T, x, g, sigma0, rtol, onset, n_damp, area, load,
+                              det_a, det_l, err, counts)
+    return wall_solve_two(T, x, g, sy, sigma0, rtol, onset, area, load, pl, pl_load, det_a,
+                          det_l, err, counts)
+
+
 @njit_serial
 def yield_step(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load, pl,
                pl_load, det_a, det_l, err, counts):
     """The diffusion solve of one fixed-point iterate with the yield wall ``sy``:
     :func:`wall_solve_two`; a yield wall the distribution cannot reach (sy[0] = inf) is left
     out (as :func:`elastic_step`, plastic outputs zero)."""
-    if math.isinf(sy[0]):
-        return _elastic_solve(grid, variant, T, x, g, sigma0, rtol, onset, n_damp, area, load,
-                              det_a, det_l, err, counts)
-    return wall_solve_two(T, x, g, sy, sigma0, rtol, onset, area, load, pl, pl_load, det_a,
-                          det_l, err, counts)
+    return _yield_solve(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load,
+                        pl, pl_load, det_a, det_l, err, counts)
 
 
 @njit_serial
@@ -400,11 +407,8 @@ def elastic_step_linked(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp,
 def yield_step_linked(grid, variant, T, x, g, sy, sigma0, rtol, onset, n_damp, area, load, pl,
                       pl_load, det_a, det_l, err, counts):
     """:func:`yield_step` with the grid solver linked in (``grid`` None, unused)."""
-    if math.isinf(sy[0]):
-        return _elastic_solve(_solve_grid_tol, variant, T, x, g, sigma0, rtol, onset, n_damp,
-                              area, load, det_a, det_l, err, counts)
-    return wall_solve_two(T, x, g, sy, sigma0, rtol, onset, area, load, pl, pl_load, det_a,
-                          det_l, err, counts)
+    return _yield_solve(_solve_grid_tol, variant, T, x, g, sy, sigma0, rtol, onset, n_damp,
+                        area, load, pl, pl_load, det_a, det_l, err, counts)
 
 
 #: the signature of :func:`elastic_step` and :func:`yield_step` (the two are
@@ -822,6 +826,8 @@ def _adhesive_sweep(fixed_point, step, grid, variant, G, c, wa, wb, gamma_s, pre
 _FIXED_POINT_AT = function_at(FIXED_POINT_SIGNATURE)
 _STEP_AT = function_at(STEP_SIGNATURE)
 _GRID_AT = function_at(GRID_SIGNATURE)
+#: the sweep's loop for first-class functions, compiled on its own (not inlined: a call with
+#: more than 30 arguments reaches numba as a call with *args, which its inliner refuses)
 _adhesive_rows = njit_serial(_adhesive_sweep)
 
 
