@@ -358,13 +358,15 @@ def compile_beside(jobs):
     ``jobs``: (dispatcher, signature) pairs, both module-level names of one module
     (``"module:name:signature_name"`` strings are built from them). Only those not compiled
     here and not in the disk cache are sent; None when none is left, with fewer than two
-    usable CPUs, or under ``NUMBA_DISABLE_JIT``. numba compiles one function at a time per
+    usable CPUs, under ``NUMBA_DISABLE_JIT``, or without a Python interpreter to start
+    (a bundled application). numba compiles one function at a time per
     process (a global lock), so on a cold cache the first call on a machine with two cores
     takes about the larger of the two shares instead of their sum; the results come back
     through the disk cache (numba writes its files atomically), where this process loads
     them (``dispatcher.compile``) after :meth:`_Beside.wait`.
     """
-    if _usable_cpus() < 2 or numba.config.DISABLE_JIT:
+    if (_usable_cpus() < 2 or numba.config.DISABLE_JIT or not sys.executable
+            or getattr(sys, "frozen", False)):   # a bundled application: no interpreter to run
         return None
     names = []
     for dispatcher, signature in jobs:

@@ -98,6 +98,17 @@ def test_no_second_process_with_one_cpu(monkeypatch):
     assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
 
 
+@pytest.mark.parametrize("attr, value", [("executable", ""), ("frozen", True)])
+def test_no_second_process_without_an_interpreter(monkeypatch, attr, value):
+    """A bundled application (sys.frozen) or no sys.executable: starting "python -c" there
+    would start the application again, or nothing."""
+    monkeypatch.setattr(_jit, "_usable_cpus", lambda: 2)
+    monkeypatch.setattr(_jit, "_needs_compile", lambda dispatcher, signature: True)
+    monkeypatch.setattr(_jit, "_Beside", lambda jobs: "started")
+    monkeypatch.setattr(sys, attr, value, raising=False)
+    assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
+
+
 @needs_jit
 def test_no_second_process_when_compiled_here():
     _jit.compile_for(_solve_grid_tol, GRID_SIGNATURE)
