@@ -346,6 +346,10 @@ class _Beside:
             self.proc.wait()
 
 
+#: set to "0" to compile everything in the calling process (:func:`compile_beside`)
+SECOND_PROCESS_ENV = "PERSSON_FAST_COMPILE_BESIDE"
+
+
 def _needs_compile(dispatcher, signature) -> bool:
     """Neither compiled in this process nor in the disk cache for ``signature``."""
     return (tuple(signature.args) not in getattr(dispatcher, "overloads", {})
@@ -358,15 +362,18 @@ def compile_beside(jobs):
     ``jobs``: (dispatcher, signature) pairs, both module-level names of one module
     (``"module:name:signature_name"`` strings are built from them). Only those not compiled
     here and not in the disk cache are sent; None when none is left, with fewer than two
-    usable CPUs, under ``NUMBA_DISABLE_JIT``, or without a Python interpreter to start
-    (a bundled application). numba compiles one function at a time per
+    usable CPUs, under ``NUMBA_DISABLE_JIT``, without a Python interpreter to start (a
+    bundled application), or with the environment variable ``PERSSON_FAST_COMPILE_BESIDE=0``
+    (for many processes starting on one cold cache at once, e.g. a cluster's workers: each
+    would start its own). numba compiles one function at a time per
     process (a global lock), so on a cold cache the first call on a machine with two cores
     takes about the larger of the two shares instead of their sum; the results come back
     through the disk cache (numba writes its files atomically), where this process loads
     them (``dispatcher.compile``) after :meth:`_Beside.wait`.
     """
     if (_usable_cpus() < 2 or numba.config.DISABLE_JIT or not sys.executable
-            or getattr(sys, "frozen", False)):   # a bundled application: no interpreter to run
+            or getattr(sys, "frozen", False)     # a bundled application: no interpreter to run
+            or os.environ.get(SECOND_PROCESS_ENV, "1") == "0"):
         return None
     names = []
     for dispatcher, signature in jobs:

@@ -109,6 +109,17 @@ def test_no_second_process_without_an_interpreter(monkeypatch, attr, value):
     assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
 
 
+def test_no_second_process_when_switched_off(monkeypatch):
+    monkeypatch.setattr(_jit, "_usable_cpus", lambda: 2)
+    monkeypatch.setattr(_jit, "_needs_compile", lambda dispatcher, signature: True)
+    monkeypatch.setattr(_jit, "_Beside", lambda jobs: "started")
+    monkeypatch.setenv("PERSSON_FAST_COMPILE_BESIDE", "0")
+    assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) is None
+    monkeypatch.setenv("PERSSON_FAST_COMPILE_BESIDE", "1")
+    expected = None if numba.config.DISABLE_JIT else "started"
+    assert _jit.compile_beside([(_solve_grid_tol, GRID_SIGNATURE)]) == expected
+
+
 @needs_jit
 def test_no_second_process_when_compiled_here():
     _jit.compile_for(_solve_grid_tol, GRID_SIGNATURE)
