@@ -157,8 +157,8 @@ def _fingerprint(value):
 
 def function_at(signature):
     """An intrinsic that makes the numba first-class function of ``signature`` from the jit
-    address of a compiled function (an integer, :func:`jit_address`): the kernel is then
-    called through the function's own entry point (numba's calling convention, so its
+    address of a compiled function (an integer, :func:`jit_address`): the function is then
+    called through its own entry point (numba's calling convention, so its
     exceptions propagate). Under ``NUMBA_DISABLE_JIT`` the identity (the callee itself is
     passed)."""
     if numba.config.DISABLE_JIT:
@@ -230,10 +230,6 @@ class CallingKernel:
     def stats(self):
         return self.dispatcher.stats
 
-    @property
-    def py_func(self):
-        return getattr(self.dispatcher, "py_func", self.dispatcher)
-
     def _entry(self, args):
         key = tuple(_fingerprint(a) for a in args)
         entry = self._entries.get(key)
@@ -290,9 +286,9 @@ def njit_sweeps(func):
 
 def in_disk_cache(dispatcher, signature) -> bool:
     """True when numba's disk cache holds ``dispatcher`` compiled for the argument types of
-    ``signature`` (:func:`compile_for`) with the current kernel sources; nothing is loaded. When the
-    cache cannot be read this way (another numba version), True: the caller then compiles
-    in this process, as it would anyway."""
+    ``signature`` (:func:`compile_for`) with the current kernel sources; nothing is loaded.
+    When the cache cannot be read this way (another numba version), True: the caller then
+    compiles in this process, as it would anyway."""
     try:
         cache = dispatcher._cache
         key = cache._index_key(tuple(signature.args), dispatcher.targetctx.codegen())
@@ -365,11 +361,11 @@ def compile_beside(jobs):
     usable CPUs, under ``NUMBA_DISABLE_JIT``, without a Python interpreter to start (a
     bundled application), or with the environment variable ``PERSSON_FAST_COMPILE_BESIDE=0``
     (for many processes starting on one cold cache at once, e.g. a cluster's workers: each
-    would start its own). numba compiles one function at a time per
-    process (a global lock), so on a cold cache the first call on a machine with two cores
-    takes about the larger of the two shares instead of their sum; the results come back
-    through the disk cache (numba writes its files atomically), where this process loads
-    them (``dispatcher.compile``) after :meth:`_Beside.wait`.
+    would start its own). numba compiles one function at a time per process (a global lock),
+    so on a cold cache the first call on a machine with two cores takes about the larger of
+    the two shares instead of their sum; the results come back through the disk cache (numba
+    writes its files atomically), where this process loads them (``dispatcher.compile``)
+    after :meth:`_Beside.wait`.
     """
     if (_usable_cpus() < 2 or numba.config.DISABLE_JIT or not sys.executable
             or getattr(sys, "frozen", False)     # a bundled application: no interpreter to run
