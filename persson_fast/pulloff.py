@@ -23,7 +23,8 @@ from .results import summarize_status
 from .scene import DETACHMENT_PREFACTOR
 from .zeta_grid import NEAR_ONE_MIN, adhesion_zeta, refine_zeta
 from .pulloff_branch import (PULL_OFF_BLOWUP, PULL_OFF_COLLAPSE, PULL_OFF_EARLY,
-                             PULL_OFF_INNER, PULL_OFF_INNER_MIN, PULL_OFF_LOOSE,
+                             PULL_OFF_INNER, PULL_OFF_INNER_LOOSE, PULL_OFF_INNER_MIN,
+                             PULL_OFF_INNER_RTOLS, PULL_OFF_LOOSE,
                              PULL_OFF_MAX_FOLD_STEPS, PULL_OFF_MAX_ITER, PULL_OFF_MAX_STAGES,
                              PULL_OFF_REST_ITER, PULL_OFF_RESIDUAL, PULL_OFF_RETRY,
                              PULL_OFF_STALL, PULL_OFF_STEP, PULL_OFF_TAIL, PULL_OFF_TRUST,
@@ -31,7 +32,8 @@ from .pulloff_branch import (PULL_OFF_BLOWUP, PULL_OFF_COLLAPSE, PULL_OFF_EARLY,
 
 __all__ = ["pull_off",
            # re-exported from pulloff_branch (persson_fast.pulloff.<name> as before the split)
-           "PULL_OFF_STEP", "PULL_OFF_TAIL", "PULL_OFF_INNER", "PULL_OFF_INNER_MIN",
+           "PULL_OFF_STEP", "PULL_OFF_TAIL", "PULL_OFF_INNER", "PULL_OFF_INNER_LOOSE",
+           "PULL_OFF_INNER_RTOLS", "PULL_OFF_INNER_MIN",
            "PULL_OFF_EARLY", "PULL_OFF_RESIDUAL", "PULL_OFF_TRUST", "PULL_OFF_RETRY",
            "PULL_OFF_MAX_ITER", "PULL_OFF_STALL", "PULL_OFF_BLOWUP", "PULL_OFF_MAX_STAGES",
            "PULL_OFF_MAX_FOLD_STEPS", "PULL_OFF_LOOSE", "PULL_OFF_COLLAPSE",
@@ -275,10 +277,11 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
 
     sigma_a(1) = c_1 (gamma_eff(1)/dgamma)^(1/2) magnifies an error of the area profile by
     dgamma/(2 gamma_eff(1)), so the diffusion solves of a branch point run at
-    ``PULL_OFF_INNER * rtol * min(1, 2 gamma_eff(1)/dgamma)`` (1e-8 at the end of the seed
-    scene's branch for rtol = 1e-6). The inner part of the estimate is never below
-    ``PULL_OFF_INNER_FLOOR * sigma_c`` (5e-7), so an rtol below about 5e-7 cannot be
-    confirmed and warns. Seed scene on a 2-core machine: 0.55 / 1.7 / 8.9 / 18.8 s at rtol
+    ``f * rtol * min(1, 2 gamma_eff(1)/dgamma)``, f = ``PULL_OFF_INNER`` (0.05) at rtol
+    <= 1e-6 and ``PULL_OFF_INNER_LOOSE`` (0.2) at rtol >= 1e-5, log-linear between (1e-8 at
+    the end of the seed scene's branch for rtol = 1e-6, 4e-6 for rtol = 1e-4). The inner part
+    of the estimate is never below ``PULL_OFF_INNER_FLOOR * sigma_c`` (5e-7), so an rtol
+    below about 5e-7 cannot be confirmed and warns. Seed scene on a 2-core machine: 0.55 / 1.7 / 8.9 / 18.8 s at rtol
     1e-3 / 1e-4 / 1e-5 / 1e-6, every value within its estimate of the reference.
     """
     from .scene import unpack_adhesive_scene
@@ -446,14 +449,19 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     # error of the inner (diffusion) solves: re-solve the coarsest grid's end point with a
     # tighter tolerance (the inner error taken as linear in it), or, at the floor, a looser
     # one (the whole difference charged)
-    tighter = (b0.inner_rtol(rtol / PULL_OFF_INNER_CHECK, best["x"])
-               < b0.inner_rtol(rtol, best["x"]))
+    inner_used = b0.inner_rtol(rtol, best["x"])
+    inner_check = b0.inner_rtol(rtol / PULL_OFF_INNER_CHECK, best["x"])
+    tighter = inner_check < inner_used
     r_check = rtol / PULL_OFF_INNER_CHECK if tighter else rtol * PULL_OFF_INNER_CHECK
     check = b0.point(best["y0"], best["x"], r_check, m_hist=ctl["m_hist"], omega=ctl["omega"],
                      trust=PULL_OFF_TRUST, max_iter=ctl["max_iter"])
     err_inner = abs(check["sigma0"] - best["sigma0"])
     if tighter:
-        err_inner *= PULL_OFF_INNER_CHECK / (PULL_OFF_INNER_CHECK - 1.0)
+        # the check's tolerance is k times tighter (k = PULL_OFF_INNER_CHECK, more where the
+        # factor of _inner_factor falls with rtol): the error at the used one is k/(k-1) x
+        # the difference
+        k = inner_used / inner_check
+        err_inner *= k / (k - 1.0)
     if not check["converged"] or check["status"] not in (0, WALL_JUMP, RTOL_NOT_MET):
         err_inner += rtol * sigma_c
     err_inner = max(err_inner, PULL_OFF_INNER_FLOOR * sigma_c)
