@@ -183,3 +183,44 @@ def test_flagged_inner_solves_near_threshold(dgamma):
     assert sigma_c == pytest.approx({0.05185: 13e3, 0.052: 50e3}[dgamma], rel=0.1)
     assert info["converged"] == (info["error_estimate"] <= 1e-4 * sigma_c)
     assert info["converged"] or any("exceeds rtol" in str(w.message) for w in caught)
+
+
+def test_inner_tolerance_follows_rtol():
+    """The branch points' diffusion tolerance is f(rtol) rtol min(1, 2 g1): f = 0.05 at
+    rtol <= 1e-6 (where the kernel's scatter is the whole budget), 0.2 at rtol >= 1e-5,
+    log-linear and increasing between."""
+    from persson_fast.pulloff_branch import (PULL_OFF_INNER, PULL_OFF_INNER_LOOSE,
+                                             PULL_OFF_INNER_MIN, _inner_factor, _inner_rtol)
+
+    assert _inner_factor(1e-7) == _inner_factor(1e-6) == PULL_OFF_INNER == 0.05
+    assert _inner_factor(1e-5) == _inner_factor(1e-3) == PULL_OFF_INNER_LOOSE == 0.2
+    f = [_inner_factor(r) for r in np.geomspace(1e-6, 1e-5, 9)]
+    assert np.all(np.diff(f) > 0) and f[4] == pytest.approx(0.1)
+    assert _inner_rtol(1e-4, 0.1) == pytest.approx(0.2 * 1e-4 * 0.2)
+    assert _inner_rtol(1e-12) == PULL_OFF_INNER_MIN
+
+
+def test_inner_error_is_a_small_part_of_the_budget(seed_runs):
+    """At rtol 1e-3 and 1e-4 the inner solves' part of the estimate (measured by the end
+    point's check) is a fraction of rtol sigma_c, not the whole budget (about 0.05 and 0.1
+    measured) and not 20x below it (what a fixed f = 0.05 gave at rtol 1e-4: 0.005)."""
+    for rtol, (sigma_c, info) in seed_runs.items():
+        inner = info["error_parts"]["inner"]
+        assert 1e-3 * rtol * sigma_c < inner <= 0.3 * rtol * sigma_c, (rtol, inner)
+
+
+#: a near-full-contact self-affine scene (A/A0 = 0.987 at p_nom = 0): its pull-off stress
+#: [Pa] at rtol 1e-6 (234655.55 Pa, estimated error 0.40 Pa)
+FULL_SA = pf.SelfAffine(hurst=0.9, q0=1e4, q1=1e7, h_rms=1e-7)
+FULL_SA_PULL_OFF = 234655.55
+
+
+def test_rest_state_retries_a_flagged_loose_solve():
+    """At p_nom = 0 this scene's contact problem reaches the far end of the diffusion grid
+    at some loose tolerances (2e-4, 5e-6) and not at others: the solve that starts the
+    descent is repeated 10x tighter instead of failing (before, pull_off raised a
+    RuntimeError here at rtol 1e-4)."""
+    for rtol in (1e-3, 1e-4):
+        sigma_c, info = pf.pull_off(FULL_SA, e_star=3e8, work_of_adhesion=0.1, rtol=rtol,
+                                    full_output=True, bracket=False)
+        check_estimate(sigma_c, info, FULL_SA_PULL_OFF, rtol)
