@@ -34,7 +34,8 @@ from .results import ContactResult, per_contact_area, summarize_status
 from .scene import DETACHMENT_PREFACTOR
 from .yield_api import FAR_MASS, yield_wall_reach
 from .sweep import choose_parallel, is_compiled, prange_guard, run_rows
-from .zeta_grid import _scene_arrays, adhesion_zeta, coarsen_zeta, refine_zeta
+from .zeta_grid import (NARROW_CELL_RTOL, _scene_arrays, adhesion_zeta, coarsen_zeta,
+                        refine_zeta)
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "ADHESION_DEFAULTS"]
 
@@ -208,6 +209,43 @@ def _ladder_estimate(a0, a1, a2, ok0):
     return np.where(np.isfinite(est), est, np.abs(d2))
 
 
+#: the ladder's start of a finer level is interpolated cubically where the three cells
+#: around a midpoint differ in width by at most this factor (else linearly)
+MIDPOINT_CUBIC_RATIO = 4.0
+
+
+def _midpoints_cubic(u, x):
+    """Rows ``x`` (n_r, n) on nodes ``u`` and, between them, their cubic Lagrange
+    interpolant at the midpoints (linear in the first and last cell, and where the cells
+    around a midpoint differ in width by more than ``MIDPOINT_CUBIC_RATIO``), clipped at 0:
+    (n_r, 2 n - 1)."""
+    n = u.size
+    out = np.empty((x.shape[0], 2 * n - 1))
+    out[:, 0::2] = x
+    t = 0.5 * (u[:-1] + u[1:])
+    mid = 0.5 * (x[:, :-1] + x[:, 1:])
+    if n >= 4:
+        j = np.arange(1, n - 2)
+        nodes = np.stack([u[j - 1], u[j], u[j + 1], u[j + 2]])
+        w = np.ones((4, j.size))
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            for a in range(4):
+                for b in range(4):
+                    if a != b:
+                        w[a] *= (t[j] - nodes[b]) / (nodes[a] - nodes[b])
+        # only where the three cells are of similar width (a user's grid may hold cells
+        # a few ulps wide, where the weights would blow up): elsewhere linear
+        width = np.diff(u)
+        cells = np.stack([width[j - 1], width[j], width[j + 1]])
+        ok = np.all(np.isfinite(w), axis=0) & (
+            cells.max(axis=0) <= MIDPOINT_CUBIC_RATIO * cells.min(axis=0))
+        jj = j[ok]
+        mid[:, jj] = (w[0, ok] * x[:, jj - 1] + w[1, ok] * x[:, jj] + w[2, ok] * x[:, jj + 1]
+                      + w[3, ok] * x[:, jj + 2])
+    out[:, 1::2] = np.maximum(mid, 0.0)
+    return out
+
+
 class _ZetaLadder:
     """The fixed point on nested zeta grids, Richardson-extrapolated, with a-posteriori
     control of the zeta-grid error of the end area (issue 12).
@@ -255,11 +293,32 @@ class _ZetaLadder:
 
     def _start_from(self, k, rows):
         """Start of level k + 1 from level k's detachment stress (full contact where level k
-        failed)."""
+        failed): level k's values at its own nodes and their cubic interpolant in ln zeta
+        between them (:func:`_midpoints_cubic`), plus, where level k - 1 is solved too, the
+        change to the finer level that second-order convergence predicts, (x_k - x_k-1)/4
+        (linear in ln zeta). Only the start: the fixed point's stop is the same, but from
+        it the seed scene's level 2 takes 4.1 iterations instead of 5.1 (linear
+        interpolation alone), at rtol 1e-6."""
         outs, status = self.levels[k]
         z_from, z_to = self.grids[k], self.grids[k + 1]
-        start = np.array([np.interp(np.log(z_to), np.log(z_from), outs[1][r]) for r in rows])
+        lz_from, lz_to = np.log(z_from), np.log(z_to)
+        if z_to.size == 2 * z_from.size - 1 and np.array_equal(z_to[0::2], z_from):
+            start = _midpoints_cubic(lz_from, outs[1][rows])
+        else:
+            start = np.array([np.interp(lz_to, lz_from, outs[1][r]) for r in rows])
         start = start.reshape(rows.size, z_to.size)
+        regular = bool(np.all(np.diff(z_to) > NARROW_CELL_RTOL * z_to[:-1]))
+        # (not on a grid with cells a few ulps wide, a user's: the change, interpolated
+        # across such a cell, would make the wall jump where G is flat)
+        if regular and k >= 1 and self.levels[k - 1] is not None:
+            outs_c, status_c = self.levels[k - 1]
+            lz_c = np.log(self.grids[k - 1])
+            for i, r in enumerate(rows):
+                x_c = outs_c[1][r]
+                if status_c[r] != 0 or not np.all(np.isfinite(x_c)):
+                    continue
+                change = (np.interp(lz_c, lz_from, outs[1][r]) - x_c) / 4.0
+                start[i] = np.maximum(start[i] + np.interp(lz_to, lz_c, change), 0.0)
         start[status[rows] != 0] = -np.inf
         return start
 

@@ -223,3 +223,34 @@ def test_tension_takes_at_most_half_steps():
     c = seed(np.array([1e7]), adhesion_controls={"omega": 1.0})
     d = seed(np.array([1e7]), adhesion_controls={"omega": 0.5})
     assert not np.array_equal(c.iterations, d.iterations)
+
+
+def test_ladder_start_interpolates_cubically_and_predicts_the_finer_level():
+    """The start of a finer zeta level: the coarser level's values at its nodes, their cubic
+    interpolant (in ln zeta) at the midpoints, exact for cubics on an uneven grid (linear in
+    the end cells, clipped at 0), plus the second-order prediction (x_k - x_k-1)/4."""
+    from persson_fast.adhesion import _midpoints_cubic, _ZetaLadder
+    from persson_fast.zeta_grid import refine_zeta
+
+    u = np.cumsum(np.r_[0.0, np.linspace(0.1, 0.4, 9)])
+    cubic = lambda v: 0.3 + v - 0.5 * v**2 + 0.2 * v**3      # noqa: E731
+    out = _midpoints_cubic(u, cubic(u)[None, :])[0]
+    mid = 0.5 * (u[:-1] + u[1:])
+    assert np.array_equal(out[0::2], cubic(u))
+    np.testing.assert_allclose(out[3:-2:2], cubic(mid[1:-1]), rtol=1e-13)
+    assert out[1] == 0.5 * (cubic(u[0]) + cubic(u[1]))
+    assert np.all(_midpoints_cubic(u, np.where(u < 1.0, 0.0, 1.0)[None, :]) >= 0.0)
+
+    # a level whose value is f + h^2 g (h the cell width in ln zeta): from levels 0 and 1 the
+    # start of level 2 is f + h2^2 g at level 1's nodes (g, f linear: no interpolation error)
+    z1 = np.exp(np.linspace(0.0, 4.0, 9))
+    grids = [z1[0::2], z1, refine_zeta(z1)]
+    f = lambda z: 2.0 + np.log(z)                             # noqa: E731
+    g = lambda z: 3.0 + 0.5 * np.log(z)                        # noqa: E731
+    h = [1.0, 0.5, 0.25]
+    ladder = _ZetaLadder(z1, 1, None)
+    ladder.grids = grids
+    ladder.levels = [([np.zeros((1, z.size)), (f(z) + h[k] ** 2 * g(z))[None, :]],
+                      np.zeros(1, dtype=np.int64)) for k, z in enumerate(grids[:2])]
+    start = ladder._start_from(1, np.arange(1))[0]
+    np.testing.assert_allclose(start, f(grids[2]) + h[2] ** 2 * g(grids[2]), rtol=1e-13)
