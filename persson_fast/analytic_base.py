@@ -10,7 +10,7 @@ checks of the pressure and of the diffusion time G.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import erf, erfc, erfcx
+from ._special import erf, erfc, erfcx
 
 from persson_fast._validation import (
     as_float_array,

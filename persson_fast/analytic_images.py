@@ -8,7 +8,7 @@ image pair's density, shared with the linearly moving wall.
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import erf
+from ._special import erf
 
 from persson_fast._validation import (
     as_float_array,

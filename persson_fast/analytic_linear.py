@@ -9,7 +9,7 @@ relative accuracy also for tiny areas and ``exp(-b y0)`` beyond the float range
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import erfc, erfcx
+from ._special import erfc, erfcx
 
 from persson_fast._validation import (
     as_float_array,

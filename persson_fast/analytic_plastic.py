@@ -9,7 +9,7 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
-from scipy.special import erf
+from ._special import erf
 
 from persson_fast._validation import (
     as_float_array,

@@ -61,7 +61,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.special import erf, erfc, exp1
+from ._special import erf, erfc, exp1
 
 from ._kernels.contact_law import law_sweep
 from ._kernels.separation import (J_END, J_SPLIT, build_kfun_table,

@@ -13,7 +13,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
-from scipy.special import erfc
+from ._special import erfc
 
 from ._kernels.status import GRID_CAP
 from ._kernels.strip import N_DAMP as STRIP_N_DAMP

@@ -87,3 +87,21 @@ def test_kernels_import_no_model_module():
             up = [d for d in deps if not d.startswith("persson_fast._kernels")
                   and d != "persson_fast._jit"]
             assert not up, (mod, up)
+
+
+def test_import_leaves_scipy_special_for_first_use():
+    """``import persson_fast`` (and the command line's module) does not import scipy.special
+    (about a third of the import time); the first error function called does, and gives
+    scipy's values."""
+    import subprocess
+    import sys
+
+    code = ("import sys, persson_fast.cli; assert 'scipy.special' not in sys.modules; "
+            "from persson_fast import _special; import numpy as np; x = np.linspace(-3, 3, 7); "
+            "v = [_special.erf(x), _special.erfc(x), _special.erfcx(x), _special.exp1(x + 4)]; "
+            "import scipy.special as s; assert 'scipy.special' in sys.modules; "
+            "ref = [s.erf(x), s.erfc(x), s.erfcx(x), s.exp1(x + 4)]; "
+            "assert all(np.array_equal(a, b) for a, b in zip(v, ref)); print('ok')")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 0 and proc.stdout.strip() == "ok", proc.stderr
