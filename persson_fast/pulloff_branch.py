@@ -385,7 +385,7 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
     iterations = 0
     if x_start is None:
         inner = _inner_rtol(rtol)
-        for attempt in range(PULL_OFF_REST_RETRIES + 1):
+        for _ in range(PULL_OFF_REST_RETRIES + 1):
             outs, status, its, _, _ = _run(branch.G, branch.c, branch.wa, branch.wb, gamma_s,
                                            np.array([0.0]), inner, False, controls, None,
                                            variant, onset=False)
