@@ -282,7 +282,7 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
     the end of the seed scene's branch for rtol = 1e-6, 4e-6 for rtol = 1e-4). The inner part
     of the estimate is never below ``PULL_OFF_INNER_FLOOR * sigma_c`` (5e-7), so an rtol
     below about 5e-7 cannot be confirmed and warns. Seed scene on a 2-core machine: 0.15 /
-    0.56 / 5.3 s at rtol 1e-3 / 1e-4 / 1e-5 (18.8 s at 1e-6, measured earlier), every value
+    0.56 / 5.3 / 36 s at rtol 1e-3 / 1e-4 / 1e-5 / 1e-6, every value
     within its estimate of the reference.
     """
     from .scene import unpack_adhesive_scene
