@@ -632,20 +632,21 @@ def test_cli_theory_from_config(tmp_path, capsys):
 
 
 def test_console_script_exits_with_mains_code_and_frozen_objects():
-    """``persson-fast`` (``cli.run``): main's exit code, the objects left frozen out of the
-    collector before the interpreter shuts down (its collections skip them); main called
-    in-process leaves the collector alone."""
+    """``persson-fast`` (``cli.run``): main's exit code, the objects frozen out of the
+    collector (its collections skip them) and its youngest generation's threshold raised;
+    main called in-process leaves the collector alone."""
     import gc
     import subprocess
     import sys
 
-    frozen = gc.get_freeze_count()
+    frozen, threshold = gc.get_freeze_count(), gc.get_threshold()
     assert cli.main(["--points", "1", "--out", "unused"]) == 2
-    assert gc.get_freeze_count() == frozen
+    assert gc.get_freeze_count() == frozen and gc.get_threshold() == threshold
     code = ("import atexit, gc, sys; from persson_fast import cli; "
-            "atexit.register(lambda: print('frozen', gc.get_freeze_count() > 0)); "
+            "atexit.register(lambda: print('frozen', gc.get_freeze_count() > 0, "
+            "gc.get_threshold()[0])); "
             "sys.argv = ['persson-fast', '--points', '1']; cli.run()")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           timeout=120)
     assert proc.returncode == 2 and "--points must be >= 2" in proc.stderr
-    assert proc.stdout.strip().endswith("frozen True"), proc.stdout
+    assert proc.stdout.strip().endswith(f"frozen True {cli.RUN_GC_THRESHOLD}"), proc.stdout
