@@ -578,8 +578,15 @@ def _fixed_point(step, grid, variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_dam
     g = np.empty(n)
     ones = np.ones(n)
     counts = np.zeros(3, dtype=np.int64)
-    # start: the given profile, or the detachment stress of full contact
+    # start: the given profile, or the detachment stress of full contact; the diffusion
+    # tolerance of the first solve: loose from full contact, rtol from a given start (the
+    # zeta ladder's levels start from another level's solution, already near the fixed
+    # point: loose first solves would only add their own error to the residual; seed scene
+    # at rtol 1e-6, level 0 from level 1: 4.4 iterations instead of 7.1, and a start at the
+    # fixed point itself took 9)
+    rtol_it = 1e-3
     if x_init[0] >= 0.0:
+        rtol_it = rtol
         for i in range(n):
             x[i] = x_init[i]
             g[i] = 1.0          # no crossing known before the first update
@@ -600,13 +607,6 @@ def _fixed_point(step, grid, variant, G, c, wa, wb, gamma_s, sigma0, rtol, n_dam
     lost = 0
     pinned = False
     it_mark = 0
-    rtol_it = 1e-3
-    if x_init[0] >= 0.0:
-        # a given start (the zeta ladder's levels start from another level's solution) is
-        # already near the fixed point: loose first solves would only add their own error to
-        # the residual (seed scene at rtol 1e-6, level 0 from level 1: 4.4 iterations
-        # instead of 7.1; a start at the fixed point itself took 9)
-        rtol_it = rtol
     while it < max_iter:
         it += 1
         # loose early solves; the tolerance only tightens, so that the diffusion grid (and
