@@ -4,9 +4,16 @@
 scene and returns a :class:`ContactLaw`: its ``table`` is a tuple of three float64 arrays
 that compiled code evaluates with :func:`persson_fast.embed.law_pressure`,
 :func:`~persson_fast.embed.law_stiffness` or
-:func:`~persson_fast.embed.law_pressure_stiffness` (inside a user's ``@numba.njit``,
-~20-40 ns a call), and that :meth:`ContactLaw.to_csv` / :meth:`ContactLaw.to_xarray` export
-for codes outside Python.
+:func:`~persson_fast.embed.law_pressure_stiffness` (inside a user's ``@numba.njit``), and
+that :meth:`ContactLaw.to_csv` / :meth:`ContactLaw.to_xarray` export for codes outside
+Python.
+
+Every compiled function checks the table it is given before it reads it (the rules of
+:func:`persson_fast._kernels.contact_law.law_status`: five arrays of one length, ln u
+increasing, ln p decreasing, finite, every interval monotone): a table that is not one this
+module builds gives NaN and status ``BAD_LAW`` (21), never a number. The check is one pass
+over the nodes, so a call costs O(n) (a few hundred nodes at rtol 1e-6 to 1e-8, 1,700 at
+1e-10); :func:`persson_fast.embed.law_sweep` evaluates many separations with one check.
 
 Interpolation: ln p and ln K as cubic Hermite polynomials of v = ln u between nodes, with
 the exact slopes d ln p/dv = -u K/p and d ln K/dv = (1 - d ln Q/d ln p) d ln p/dv (Q = p/K,
@@ -32,8 +39,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._io import write_text_atomic
-from ._kernels.contact_law import law_sweep
-from ._kernels.status import BAD_SEPARATION, LAW_EXTRAPOLATED, STATUS_MESSAGES
+from ._kernels.contact_law import law_status, law_sweep, law_sweep_unchecked
+from ._kernels.status import BAD_LAW, BAD_SEPARATION, LAW_EXTRAPOLATED, OK, STATUS_MESSAGES
 from ._validation import as_float_array, check_finite, optional_import
 from .scene import _check_rtol
 from .separation import _evaluate, _scene, nodes_for
@@ -56,7 +63,8 @@ class ContactLaw:
     ----------
     table : tuple of five (n,) arrays -- (ln u ascending [ln m], ln p [ln Pa],
         d ln p/d ln u [-], ln K [ln Pa/m], d ln K/d ln u [-]): pass it to the compiled
-        ``embed.law_*`` functions.
+        ``embed.law_*`` functions (which refuse, with NaN and ``BAD_LAW``, a table that
+        breaks the rules of ``embed.law_status``).
     separation, pressure, stiffness : (n,) -- the nodes: u [m], p [Pa], K [Pa/m].
     rtol : float -- the tolerance the table was built to (relative, p and K). [-]
     error_estimate : float -- largest relative error of p or K found at the checks. [-]
@@ -80,7 +88,8 @@ class ContactLaw:
     # --- Python evaluation -------------------------------------------------------------------
     def evaluate(self, separation):
         """(p [Pa], K [Pa/m], status) at separations u [m] (any shape), as compiled code
-        gets them (status per value: 0 ok, ``BAD_SEPARATION``, ``LAW_EXTRAPOLATED``)."""
+        gets them (status per value: 0 ok, ``BAD_SEPARATION``, ``LAW_EXTRAPOLATED``;
+        ``BAD_LAW`` everywhere when the table breaks a rule of ``law_status``)."""
         u = as_float_array(separation, "separation", "m")
         flat = np.ascontiguousarray(u.reshape(-1))
         p = np.empty(flat.size)
@@ -91,6 +100,9 @@ class ContactLaw:
 
     def _checked(self, separation, which: int):
         p, k, status = self.evaluate(separation)
+        if np.any(status == BAD_LAW):
+            raise ValueError(f"table: {STATUS_MESSAGES[BAD_LAW]}; got arrays of lengths "
+                             f"{[int(np.size(a)) for a in self.table]}")
         for code in (BAD_SEPARATION, LAW_EXTRAPOLATED):
             if np.any(status == code):
                 idx = int(np.argmax(np.reshape(status, -1) == code))
@@ -248,7 +260,7 @@ def contact_law(surface, *, e_star=None, energy_correction=None, rtol=1e-6,
         p_int = np.empty(xc.size)
         k_int = np.empty(xc.size)
         status = np.empty(xc.size, dtype=np.int64)
-        law_sweep(table, uc, p_int, k_int, status)
+        law_sweep_unchecked(table, uc, p_int, k_int, status)
         err_p = np.abs(p_int / np.exp(xc) - 1.0)
         err_k = np.abs(k_int * qc / np.exp(xc) - 1.0)        # K = p / Q
         err = np.maximum(err_p, err_k).reshape(-1, theta.size).max(axis=1)
@@ -262,6 +274,9 @@ def contact_law(surface, *, e_star=None, energy_correction=None, rtol=1e-6,
                                f"{rtol!r} (largest error {err.max():.3g}); use a larger rtol")
         mids = 0.5 * (x[:-1] + x[1:])[bad]
         x = np.sort(np.concatenate([x, mids]))
+    if law_status(table) != OK:
+        raise RuntimeError("contact_law: the finished table breaks a rule of law_status (a "
+                           "bug: please report the scene)")
     v_n, y_n, dy_n, z_n, _ = table
     u_n = np.exp(v_n)
     p_n = np.exp(y_n)

@@ -58,7 +58,12 @@ A contact law p(u), K(u) of a scene without adhesion (the mean interfacial separ
 
 ``law.to_csv(path)`` and ``law.to_xarray()`` export the nodes for other codes
 (:mod:`persson_fast.contact_law` says how to interpolate them). Status 18
-(``BAD_SEPARATION``): u not finite or <= 0; 19 (``LAW_EXTRAPOLATED``): u below the table.
+(``BAD_SEPARATION``): u not finite or <= 0; 19 (``LAW_EXTRAPOLATED``): u below the table;
+21 (``BAD_LAW``): the table is not one ``contact_law`` can have built (module table below),
+and p, K, u are NaN. Each call checks the whole table (one pass over its n nodes, O(n): a
+few hundred nodes at rtol 1e-6 to 1e-8), so for many separations at once ``law_sweep(table,
+gaps, out_p, out_k, out_status)`` checks it once and evaluates them all; ``law_status(table)``
+is the check alone.
 
 A non-zero status is one of :mod:`persson_fast._kernels.status` (``STATUS_MESSAGES`` says
 what it means); check it as you would a result's ``status``. ``adhesive_area`` is the same
@@ -86,6 +91,12 @@ BAD_SCENE     14    ``adhesive_area`` only: ``scene`` as :func:`adhesive_scene` 
                     each grid's G at least 2 points, finite, ``G[0] >= 0``, non-decreasing;
                     c of G's length, wa and wb one shorter, all finite and >= 0; the energy
                     correction finite and <= 1 (< 0: S = 1); the stress scale finite, > 0
+BAD_LAW       21    ``law_*`` only: ``table`` as :func:`contact_law` builds it -- five
+                    arrays of one length n >= 2, ln u strictly increasing and ln p strictly
+                    decreasing (both logarithms of doubles, in [-746, 710]), d ln p/d ln u
+                    < 0, ln K and d ln K/d ln u finite, every interval monotone
+                    (Fritsch-Carlson); checked before the separation or pressure
+BAD_INPUT     5     ``law_sweep`` only: outputs of another length than the separations
 ============  ====  ======================================================================
 
 The codes are importable as ``persson_fast._kernels.status.BAD_RTOL`` etc. (integers, so
@@ -102,7 +113,7 @@ from ._kernels import status as _status
 from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
                                solve_adhesive_one)
 from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_separation,
-                                   law_stiffness)
+                                   law_status, law_stiffness, law_sweep)
 from ._kernels.similarity import solve_one
 from ._kernels.strip import N_DAMP as STRIP_N_DAMP
 from ._kernels.strip import solve_strip
@@ -112,7 +123,8 @@ from .scene import DETACHMENT_PREFACTOR
 
 __all__ = ["diffusion_area", "diffusion_solve", "elastoplastic_area", "adhesive_scene", "adhesive_area",
            "contact_law", "ContactLaw", "law_pressure", "law_stiffness",
-           "law_pressure_stiffness", "law_separation", "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
+           "law_pressure_stiffness", "law_separation", "law_status", "law_sweep",
+           "STATUS_MESSAGES", "RTOL_MIN", "RTOL_MAX"]
 
 STATUS_MESSAGES = _status.STATUS_MESSAGES
 

@@ -12,15 +12,30 @@ the exact law p ~ exp(-u/u0), K = p/u0 there, to the builder's tolerance; below 
 smallest separation (pressures above the table) they continue linearly in v, and the
 status says ``LAW_EXTRAPOLATED``.
 
-Status: 0 ok; ``BAD_SEPARATION`` (u not finite or <= 0: p and K are NaN);
-``LAW_EXTRAPOLATED`` (u below the table: p and K are a continuation, not a result).
+Status: 0 ok; ``BAD_LAW`` (the table breaks a rule of :func:`law_status`: p, K and u are
+NaN); ``BAD_SEPARATION`` (u not finite or <= 0: p and K are NaN); ``LAW_EXTRAPOLATED`` (u
+below the table: p and K are a continuation, not a result).
+
+Every public function here checks the whole table first (:func:`law_status`: one pass over
+the five arrays, no allocation), so a table that was cut, reversed, mixed up or holds a NaN
+gives NaN and ``BAD_LAW``, never a number and never a read past the end of an array. The
+check is O(n) per call (n nodes): for many separations at once, :func:`law_sweep` checks the
+table once. The builder's own refinement loop, whose intermediate tables need not be
+monotone yet, uses :func:`law_sweep_unchecked`.
 """
 from __future__ import annotations
 
 import math
 
 from .._jit import njit_serial
-from .status import BAD_PRESSURE, BAD_SEPARATION, LAW_EXTRAPOLATED, OK
+from .status import BAD_INPUT, BAD_LAW, BAD_PRESSURE, BAD_SEPARATION, LAW_EXTRAPOLATED, OK
+
+#: ln u and ln p of a table lie within the logarithms of positive doubles
+LOG_LOW = -746.0
+LOG_HIGH = 710.0
+#: relative slack of the kernel's Fritsch-Carlson test against the builder's (the two
+#: forms of one inequality differ by a few roundings)
+MONOTONE_SLACK = 1e-12
 
 
 @njit_serial
@@ -49,8 +64,39 @@ def _hermite(v_nodes, f, df, i, v):
 
 
 @njit_serial
-def law_logs(law, u):
-    """(ln p, ln K, status) of the law at separation u [m]."""
+def law_status(law):
+    """``OK`` when ``law`` is a table that :func:`persson_fast.contact_law.contact_law` can
+    have built, else ``BAD_LAW``.
+
+    The rules: five arrays of one length n >= 2; v = ln u strictly increasing and y = ln p
+    strictly decreasing, both within [LOG_LOW, LOG_HIGH] (logarithms of doubles); the slopes
+    dy < 0 and every value of z, dz finite; every interval monotone by the Fritsch-Carlson
+    condition the builder enforces, (dy_i^2 + dy_(i+1)^2) <= 9 secant_i^2 (with a relative
+    slack of ``MONOTONE_SLACK`` for rounding). Written without early exits (one pass, no
+    allocation); NaN fails every comparison.
+    """
+    v, y, dy, z, dz = law
+    n = v.shape[0]
+    if (n < 2 or y.shape[0] != n or dy.shape[0] != n or z.shape[0] != n
+            or dz.shape[0] != n):
+        return BAD_LAW
+    ok = ((v[0] >= LOG_LOW) & (v[n - 1] <= LOG_HIGH) & (y[n - 1] >= LOG_LOW)
+          & (y[0] <= LOG_HIGH) & (dy[n - 1] < 0.0) & (dy[n - 1] > -math.inf)
+          & (abs(z[n - 1]) < math.inf) & (abs(dz[n - 1]) < math.inf))
+    bound = 9.0 * (1.0 + MONOTONE_SLACK)
+    for i in range(n - 1):
+        h = v[i + 1] - v[i]
+        d = y[i] - y[i + 1]
+        a = dy[i]
+        b = dy[i + 1]
+        ok &= ((h > 0.0) & (d > 0.0) & (a < 0.0) & (abs(z[i]) < math.inf)
+               & (abs(dz[i]) < math.inf) & ((a * a + b * b) * (h * h) <= bound * (d * d)))
+    return OK if ok else BAD_LAW
+
+
+@njit_serial
+def _logs(law, u):
+    """(ln p, ln K, status) of a checked law at separation u [m]."""
     v_nodes, y, dy, z, dz = law
     n = v_nodes.size
     if not (u > 0.0) or not math.isfinite(u) or n < 2:
@@ -70,8 +116,18 @@ def law_logs(law, u):
 
 
 @njit_serial
+def law_logs(law, u):
+    """(ln p, ln K, status) of the law at separation u [m] (the table checked first)."""
+    if law_status(law) != OK:
+        return math.nan, math.nan, BAD_LAW
+    return _logs(law, u)
+
+
+@njit_serial
 def law_pressure(law, u):
     """(p [Pa], status) of the law at separation u [m]."""
+    if law_status(law) != OK:
+        return math.nan, BAD_LAW
     v_nodes, y, dy, z, dz = law
     n = v_nodes.size
     if not (u > 0.0) or not math.isfinite(u) or n < 2:
@@ -107,8 +163,10 @@ def law_separation(law, p):
     safeguarded by bisection (to rounding), so law_pressure(law, u) returns p to rounding;
     below the table's pressures the exponential tail is inverted exactly; above them the
     continuation is, with status ``LAW_EXTRAPOLATED``. p not finite or <= 0: NaN,
-    ``BAD_PRESSURE``.
+    ``BAD_PRESSURE``; a table that breaks a rule of :func:`law_status`: NaN, ``BAD_LAW``.
     """
+    if law_status(law) != OK:
+        return math.nan, BAD_LAW
     v_nodes, y, dy, z, dz = law
     n = v_nodes.size
     if not (p > 0.0) or not math.isfinite(p) or n < 2:
@@ -155,7 +213,28 @@ def law_separation(law, p):
 
 
 @njit_serial
-def law_sweep(law, u, out_p, out_k, out_status):
-    """The law at every separation of ``u`` (vectorised form for the Python layer)."""
+def law_sweep_unchecked(law, u, out_p, out_k, out_status):
+    """The law at every separation of ``u``, the table not checked (the builder's loop, whose
+    intermediate tables need not pass :func:`law_status` yet)."""
     for i in range(u.size):
-        out_p[i], out_k[i], out_status[i] = law_pressure_stiffness(law, u[i])
+        ln_p, ln_k, out_status[i] = _logs(law, u[i])
+        out_p[i] = math.exp(ln_p)
+        out_k[i] = math.exp(ln_k)
+
+
+@njit_serial
+def law_sweep(law, u, out_p, out_k, out_status):
+    """The law at every separation of ``u`` (p [Pa], K [Pa/m] and status written into the
+    outputs, each of u's length), the table checked once: a bad table fills every output
+    with NaN and ``BAD_LAW``; outputs of another length than ``u``, with NaN and
+    ``BAD_INPUT``."""
+    n = u.shape[0]
+    s = law_status(law)
+    if out_p.shape[0] != n or out_k.shape[0] != n or out_status.shape[0] != n:
+        s = BAD_INPUT
+    if s != OK:
+        out_p[:] = math.nan
+        out_k[:] = math.nan
+        out_status[:] = s
+        return
+    law_sweep_unchecked(law, u, out_p, out_k, out_status)

@@ -23,6 +23,8 @@ BAD_SEPARATION = 18    # contact law: the separation is not finite or not > 0
 LAW_EXTRAPOLATED = 19  # contact law: separation below the table (pressure above it), continued
 BAD_SIGMA_Y = 20       # embed.elastoplastic_area: sigma_y not finite, not of G's length, jumping
                        # or not above -sigma_a
+BAD_LAW = 21           # contact law: the table is not one contact_law can have built
+SEPARATION_UNDERFLOW = 22  # separation: u (or Q = p/K) near or below the smallest normal double
 
 STATUS_MESSAGES = {
     OK: "ok",
@@ -57,6 +59,18 @@ STATUS_MESSAGES = {
     BAD_SIGMA_Y: ("sigma_y must be finite, have the length of G, keep -sigma_a < sigma_y at every "
                   "G and not jump (a repeated G with different values) [stress]; nothing "
                   "solved"),
+    BAD_LAW: ("the contact law's table must be the five arrays of ContactLaw.table (ln u, ln p, "
+              "d ln p/d ln u, ln K, d ln K/d ln u), all of one length >= 2 and finite, ln u "
+              "strictly increasing and ln p strictly decreasing within [-746, 710] (logarithms "
+              "of doubles), d ln p/d ln u < 0 and every interval monotone (Fritsch-Carlson: "
+              "(s_i^2 + s_(i+1)^2) <= 9 secant^2); p, K and u are NaN (build it with "
+              "contact_law, or read its to_csv columns back unchanged)"),
+    SEPARATION_UNDERFLOW: ("the separation underflows double precision at this pressure (u or "
+                           "Q = p/K below 1e-292 m, where terms of their sums fall below the "
+                           "smallest normal double): the surfaces are in full contact to "
+                           "rounding; u may be 0 or have lost digits and K may be inf (u ~ "
+                           "exp(-p^2/(4 G1)): a pressure far above sqrt(G1)); "
+                           "pressure_at_separation cannot invert u = 0"),
     LAW_EXTRAPOLATED: ("separation below the contact law's table (a pressure above its range): p "
                        "and K are a continuation with the last slope, not a result (build the "
                        "law with a larger pressure_max)"),
