@@ -357,8 +357,10 @@ class SeparationResult:
     area : (n_p,) -- A/A0 = erf(p / (2 sqrt G1)), the area the three rest on. [-]
     decay_length : float -- u0 of the small-pressure law p ~ exp(-u/u0). [m]
     energy_correction : float or None -- gamma_S of S (None: S = 1). [-]
-    status : (n_p,) int -- 0 ok; ``BELOW_RESOLVED`` (17) for pressures below
-        ``pressure_floor`` (the quadrature near q0 is not resolved there).
+    status : (n_p,) int -- 0 ok (p = 0 included: u = inf, K = 0, U_el = 0 exactly);
+        ``BELOW_RESOLVED`` (17) for pressures below ``pressure_floor`` (the quadrature near
+        q0 is not resolved there); ``SEPARATION_UNDERFLOW`` (22) where u or Q = p/K falls
+        below ~1e-292 m (pressures far above sqrt(G1): u may be 0 and K inf).
     pressure_floor : float -- see :class:`SeparationNodes`. [Pa]
     success : bool, message : str, timings : dict
     """
@@ -437,7 +439,9 @@ def solve_separation(surface, pressure, *, e_star=None, energy_correction=None,
     surface : Surface or Scene
         The roughness, or a :class:`~persson_fast.Scene` without adhesion.
     pressure : float or array_like, shape (n_p,)
-        Nominal pressures, > 0 and finite. [Pa]
+        Nominal pressures, >= 0 and finite. At p = 0 the surfaces are apart: u = inf,
+        K = 0, U_el = 0 and A = 0 (the limits, exactly; status 0), as
+        ``ContactResult.separation`` and ``persson-fast contact --separation`` give. [Pa]
     e_star : float
         Effective modulus E* = E/(1 - nu^2) > 0 (with a surface). [Pa]
     energy_correction : float or None
@@ -455,21 +459,38 @@ def solve_separation(surface, pressure, *, e_star=None, energy_correction=None,
     J. Phys.: Condens. Matter 20, 215214 (2008)); no diffusion solve. Relative accuracy
     ~1e-12 (measured, see the module docstring), whatever a solver's rtol. A scene with
     adhesion raises a ValueError (not derived here).
+
+    Round trip: :func:`pressure_at_separation` of every u with status 0 returns its pressure
+    (to its rtol; u = inf gives p = 0). At large pressure u ~ exp(-p^2/(4 G1)) leaves double
+    precision (below ~1e-292 m its sum loses terms, below ~5e-324 m it is 0): such a u is
+    flagged ``SEPARATION_UNDERFLOW``, and a u of 0 cannot be inverted (the inverse raises a
+    ValueError saying so).
     """
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "solve_separation")
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1)).reshape(-1)
     check_finite(p, "pressure", "Pa")
-    if np.any(p <= 0):
-        bad = int(np.argmax(p <= 0))
-        raise ValueError(f"pressure must be > 0 for the separation [Pa] (at p = 0 the "
-                         f"surfaces are apart, u infinite); got pressure[{bad}] = "
-                         f"{float(p[bad])!r}")
+    if np.any(p < 0):
+        bad = int(np.argmax(p < 0))
+        raise ValueError(f"pressure must be >= 0 for the separation [Pa] (tension needs "
+                         f"adhesion, which is not derived here; at p = 0 the surfaces are "
+                         f"apart, u = inf); got pressure[{bad}] = {float(p[bad])!r}")
     t0 = time.perf_counter()
     nodes = nodes_for(surface, e)
     t1 = time.perf_counter()
-    u, q, energy, status = _evaluate(nodes, gamma_s, p, parallel)
+    apart = p == 0
+    if np.any(apart):
+        # the exact limits at p = 0: u = inf, K = 0, U_el = 0 (Q -> u0 > 0, so K = p/Q = 0)
+        pos = ~apart
+        u = np.full(p.size, np.inf)
+        q = np.ones(p.size)
+        energy = np.zeros(p.size)
+        status = np.zeros(p.size, dtype=np.int64)
+        u[pos], q[pos], energy[pos], status[pos] = _evaluate(nodes, gamma_s, p[pos], parallel)
+    else:
+        u, q, energy, status = _evaluate(nodes, gamma_s, p, parallel)
     t2 = time.perf_counter()
-    status = np.where((status == OK) & (p < nodes.pressure_floor), BELOW_RESOLVED, status)
+    status = np.where((status == OK) & (p < nodes.pressure_floor) & ~apart, BELOW_RESOLVED,
+                      status)
     with np.errstate(divide="ignore", over="ignore"):
         stiffness = p / q
     area = erf(p * nodes.s_scale[0])
@@ -479,7 +500,7 @@ def solve_separation(surface, pressure, *, e_star=None, energy_correction=None,
     else:
         bad = int(np.argmax(status != OK))
         message = (f"{int(np.count_nonzero(status != OK))} of {p.size} pressures flagged; "
-                   f"first: pressure[{bad}] = {p[bad]!r} Pa: "
+                   f"first: pressure[{bad}] = {float(p[bad])!r} Pa: "
                    f"{STATUS_MESSAGES[int(status[bad])]}")
     return SeparationResult(
         pressure=p, separation=u, stiffness=stiffness, elastic_energy=energy, area=area,
@@ -503,7 +524,9 @@ def pressure_at_separation(surface, separation, *, e_star=None, energy_correctio
     surface : Surface or Scene
         The roughness, or a Scene without adhesion.
     separation : float or array_like
-        Mean interfacial separation u > 0, finite. [m]
+        Mean interfacial separation u > 0 (inf allowed: the surfaces apart, p = 0). A u of
+        0 is refused: it is full contact, reached at no finite pressure (a 0 from
+        :func:`solve_separation` is an underflow, flagged there). [m]
     e_star : float
         Effective modulus E* > 0 (with a surface). [Pa]
     energy_correction : float or None
@@ -530,12 +553,19 @@ def pressure_at_separation(surface, separation, *, e_star=None, energy_correctio
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "pressure_at_separation")
     rtol = _check_rtol(rtol)
     u_in = as_float_array(separation, "separation", "m")
-    check_finite(u_in, "separation", "m")
     target = u_in.reshape(-1)
+    if np.any(np.isnan(target)):
+        bad = int(np.argmax(np.isnan(target)))
+        raise ValueError(f"separation must be a number > 0 [m] (inf allowed: p = 0); got "
+                         f"separation[{bad}] = nan")
     if np.any(target <= 0):
         bad = int(np.argmax(target <= 0))
-        raise ValueError(f"separation must be > 0 [m] (u -> 0 needs an infinite pressure); "
-                         f"got separation[{bad}] = {float(target[bad])!r}")
+        why = (" (full contact, reached at no finite pressure; a u of 0 from solve_separation "
+               "is an underflow at a pressure far above sqrt(G1), flagged there with status "
+               "SEPARATION_UNDERFLOW = 22, and its pressure cannot be recovered from it)"
+               if target[bad] == 0 else "")
+        raise ValueError(f"separation must be > 0 [m]{why}; got separation[{bad}] = "
+                         f"{float(target[bad])!r}")
     nodes = nodes_for(surface, e)
     u0 = gamma_s * float(np.sum(nodes.a_sep))
     root_g1 = 0.5 / nodes.s_scale[0]
@@ -544,7 +574,7 @@ def pressure_at_separation(surface, separation, *, e_star=None, energy_correctio
     p_grid = np.geomspace(p_lo, 60.0 * root_g1, 64)
     u_grid = _evaluate(nodes, gamma_s, p_grid)[0]
     out = np.empty_like(target)
-    below = target >= u_grid[0]
+    below = target >= u_grid[0]             # u = inf included: p = 0 exactly (exp(-inf))
     out[below] = p_grid[0] * np.exp(-(target[below] - u_grid[0]) / u0)
     idx = np.nonzero(~below)[0]
     if idx.size:
@@ -561,8 +591,8 @@ def pressure_at_separation(surface, separation, *, e_star=None, energy_correctio
                 f = np.log(u) - ln_t
             lo = np.where(f > 0, x, lo)                 # u too large: p too small
             hi = np.where(f > 0, hi, x)
-            slope = -q / u                              # d ln u / d ln p
             with np.errstate(invalid="ignore", divide="ignore"):
+                slope = -q / u                          # d ln u / d ln p (u = 0: bisect)
                 step = -f / slope
             x_new = x + step
             bad = ~np.isfinite(x_new) | (x_new <= lo) | (x_new >= hi)
@@ -582,23 +612,26 @@ def pressure_at_separation(surface, separation, *, e_star=None, energy_correctio
 def contact_fields(surface, e_star, energy_correction, parallel, pressure):
     """(separation, stiffness, elastic_energy, seconds) at pressures >= 0 of a validated
     scene without adhesion: the lazy fields of :class:`persson_fast.ContactResult`
-    (p = 0: u = inf, K = 0, U_el = 0)."""
+    (p = 0: u = inf, K = 0, U_el = 0, as :func:`solve_separation` gives).
+
+    The fields carry no status of their own: where :func:`solve_separation` flags a pressure
+    (``BELOW_RESOLVED``, ``SEPARATION_UNDERFLOW``) a ``RuntimeWarning`` says which and why.
+    """
     t0 = time.perf_counter()
     p = np.asarray(pressure, dtype=float)
-    pos = p > 0
-    u = np.full(p.size, np.inf)
-    k = np.zeros(p.size)
-    energy = np.zeros(p.size)
-    if np.any(pos):
-        r = solve_separation(surface, p[pos], e_star=e_star, energy_correction=energy_correction,
-                             parallel=parallel)
-        u[pos], k[pos], energy[pos] = r.separation, r.stiffness, r.elastic_energy
-    return u, k, energy, time.perf_counter() - t0
+    r = solve_separation(surface, p, e_star=e_star, energy_correction=energy_correction,
+                         parallel=parallel)
+    if not r.success:
+        import warnings
+
+        warnings.warn(f"separation: {r.message} (solve_separation gives the status per "
+                      f"pressure)", RuntimeWarning, stacklevel=4)
+    return r.separation, r.stiffness, r.elastic_energy, time.perf_counter() - t0
 
 
 def warm_separation() -> None:
     """Compile (or load from the disk cache) the separation and contact-law kernels."""
-    from ._kernels.contact_law import law_separation
+    from ._kernels.contact_law import law_separation, law_sweep_unchecked
 
     nodes = nodes_for(SelfAffine(hurst=0.8, q0=1.0, q1=10.0, C0=1.0), 1.0)
     _evaluate(nodes, 1.0, np.array([0.1]), parallel=False, slope=True)
@@ -607,4 +640,5 @@ def warm_separation() -> None:
              np.array([1.0, 0.0]), np.array([-1.0, -1.0]))
     out = [np.empty(1), np.empty(1), np.empty(1, dtype=np.int64)]
     law_sweep(table, np.array([0.5]), *out)
+    law_sweep_unchecked(table, np.array([0.5]), *out)
     law_separation(table, 1.5)

@@ -322,8 +322,8 @@ def test_pressure_below_the_resolved_range_is_flagged():
 
 
 @pytest.mark.parametrize("bad, match", [
-    ([1e5, 0.0], r"pressure must be > 0.*pressure\[1\] = 0.0"),
-    ([-1.0], r"pressure must be > 0"),
+    ([1e5, -1e3], r"pressure must be >= 0.*pressure\[1\] = -1000.0"),
+    ([-1.0], r"pressure must be >= 0"),
     ([np.nan], r"pressure must be finite"),
     ("abc", r"pressure must be a real number"),
 ])
@@ -335,7 +335,8 @@ def test_bad_pressure(bad, match):
 @pytest.mark.parametrize("bad, match", [
     (0.0, r"separation must be > 0"),
     ([1e-6, -1e-9], r"separation\[1\] = -1e-09"),
-    (np.inf, r"separation must be finite"),
+    (np.nan, r"separation must be a number > 0"),
+    (-np.inf, r"separation must be > 0"),
 ])
 def test_bad_separation(bad, match):
     with pytest.raises(ValueError, match=match):

@@ -36,7 +36,7 @@ from __future__ import annotations
 import math
 
 from .._jit import njit_serial, njit_sweeps, prange
-from .status import BAD_INPUT, NONFINITE, OK
+from .status import BAD_INPUT, NONFINITE, OK, SEPARATION_UNDERFLOW
 
 EULER_GAMMA = 0.57721566490153286061
 TWO_OVER_SQRT_PI = 2.0 / math.sqrt(math.pi)
@@ -47,6 +47,10 @@ J_SPLIT = 2.0
 J_END = 6.0
 #: erf(s) == 1.0 in double precision for s >= ERF_ONE
 ERF_ONE = 6.0
+#: u or Q below this bound (2^52 times the smallest normal double, ~1e-292 m) may hold terms
+#: that underflowed: each term below the smallest normal double is lost or inexact, and only
+#: above the bound is every such term below 2^-52 of the sum
+UNDERFLOW_BOUND = 2.0 ** 52 * 2.2250738585072014e-308
 
 
 @njit_serial
@@ -217,7 +221,9 @@ def _separation_sweep(pressure, s_scale, ln_s_scale, a_sep, b_energy, b_suffix, 
                       table_v, table_dv, x_lo, inv_step,
                       out_u, out_q, out_dq, out_energy, out_status):
     """Rows of :func:`separation_one`; out_status 0 ok, BAD_INPUT for p <= 0 or not finite,
-    NONFINITE when a sum is not finite."""
+    NONFINITE when a sum is not finite, SEPARATION_UNDERFLOW when u or Q lies below
+    ``UNDERFLOW_BOUND`` (u ~ exp(-p^2/(4 G1)) at large p: terms of the sums may have
+    underflowed, u may be 0 and K = p/Q inf or inexact)."""
     for i in prange(pressure.size):
         p = pressure[i]
         if not (p > 0.0) or not math.isfinite(p):
@@ -234,7 +240,12 @@ def _separation_sweep(pressure, s_scale, ln_s_scale, a_sep, b_energy, b_suffix, 
         out_dq[i] = dq
         out_energy[i] = energy
         ok = math.isfinite(u) and math.isfinite(q) and math.isfinite(energy)
-        out_status[i] = OK if ok else NONFINITE
+        if not ok:
+            out_status[i] = NONFINITE
+        elif u < UNDERFLOW_BOUND or q < UNDERFLOW_BOUND:
+            out_status[i] = SEPARATION_UNDERFLOW
+        else:
+            out_status[i] = OK
 
 
 separation_sweep, separation_sweep_prange = njit_sweeps(_separation_sweep)

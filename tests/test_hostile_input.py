@@ -1,0 +1,252 @@
+"""Hostile input: bad, extreme and contradictory arguments get a clear refusal or a flag.
+
+Each test is one reproducer (or a family of them): the answer is a result within its
+tolerance, a result flagged by its status, or a ValueError that names the argument.
+"""
+import math
+import warnings
+
+import numba
+import numpy as np
+import pytest
+
+import persson_fast as pf
+from persson_fast import embed
+from persson_fast._kernels.status import (BAD_INPUT, BAD_LAW, BAD_PRESSURE, BAD_SEPARATION,
+                                          OK, SEPARATION_UNDERFLOW, STATUS_MESSAGES)
+
+SEED = pf.seed_scene()
+
+
+# ---------------------------------------------------------------------------------------------
+# contact-law tables inside @numba.njit
+# ---------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def law():
+    return embed.contact_law(SEED, e_star=1e9, rtol=1e-8)
+
+
+def _copy(table):
+    return tuple(a.copy() for a in table)
+
+
+def _reversed(t):
+    return tuple(a[::-1].copy() for a in t)
+
+
+def _nan_in_ln_p(t):
+    t = _copy(t)
+    t[1][5] = np.nan
+    return t
+
+
+def _short_ln_p(t):
+    return (t[0], t[1][:10].copy(), t[2], t[3], t[4])
+
+
+def _swapped_pair(t):
+    t = _copy(t)
+    n = t[0].size // 2
+    for a in t:
+        a[n], a[n + 1] = a[n + 1], a[n]
+    return t
+
+
+def _inf_in_ln_k(t):
+    t = _copy(t)
+    t[3][-3] = np.inf
+    return t
+
+
+def _nan_in_dlnk(t):
+    t = _copy(t)
+    t[4][0] = np.nan
+    return t
+
+
+def _positive_slope(t):
+    t = _copy(t)
+    t[2][7] = -t[2][7]
+    return t
+
+
+def _steep_slope(t):
+    # monotone nodes, but a node slope 10x too steep: the cubic on its intervals overshoots
+    # (Fritsch-Carlson fails), so p(u) would not be monotone there
+    t = _copy(t)
+    t[2][7] *= 10.0
+    return t
+
+
+def _short_last(t):
+    return (t[0], t[1], t[2], t[3], t[4][:-1].copy())
+
+
+def _one_node(t):
+    return tuple(a[:1].copy() for a in t)
+
+
+def _empty(t):
+    return tuple(a[:0].copy() for a in t)
+
+
+def _beyond_doubles(t):
+    t = _copy(t)
+    t[0][:] = t[0] + 1000.0                  # ln u above ln(max double)
+    return t
+
+
+def _mixed_up(t):
+    return (t[1], t[0], t[2], t[3], t[4])     # ln p where ln u belongs
+
+
+BAD_TABLES = {
+    # the three reproducers of the issue
+    "reversed nodes": _reversed,
+    "nan in ln p": _nan_in_ln_p,
+    "ln p shorter than ln u": _short_ln_p,
+    # and more
+    "two nodes swapped": _swapped_pair,
+    "inf in ln K": _inf_in_ln_k,
+    "nan in d ln K": _nan_in_dlnk,
+    "positive slope": _positive_slope,
+    "slope breaking monotonicity": _steep_slope,
+    "last array shorter": _short_last,
+    "one node": _one_node,
+    "no node": _empty,
+    "ln u beyond doubles": _beyond_doubles,
+    "columns mixed up": _mixed_up,
+}
+
+
+@numba.njit(cache=False)
+def _user_calls(table, u, p):
+    """A user's kernel calling every compiled law entry point."""
+    out = np.empty(6)
+    codes = np.empty(6, dtype=np.int64)
+    out[0], codes[0] = embed.law_pressure(table, u)
+    out[1], codes[1] = embed.law_stiffness(table, u)
+    a, b, codes[2] = embed.law_pressure_stiffness(table, u)
+    out[2] = a + b
+    out[3], codes[3] = embed.law_separation(table, p)
+    codes[4] = embed.law_status(table)
+    out[4] = 0.0
+    gaps = np.full(3, u)
+    op = np.empty(3)
+    ok = np.empty(3)
+    st = np.empty(3, dtype=np.int64)
+    embed.law_sweep(table, gaps, op, ok, st)
+    out[5] = op[0] + ok[1]
+    codes[5] = st[2]
+    return out, codes
+
+
+@pytest.mark.parametrize("name", BAD_TABLES)
+def test_bad_law_table_gives_nan_and_bad_law_inside_user_njit(law, name):
+    table = BAD_TABLES[name](law.table)
+    for u, p in [(law.separation[law.separation.size // 2] * 1.01, 1e6),
+                 (law.separation[-1] * 2.0, 1e-6), (law.separation[0] / 2.0, 1e10),
+                 (law.separation[3], law.pressure[3])]:
+        out, codes = _user_calls(table, u, p)
+        assert list(codes) == [BAD_LAW] * 6, (name, codes)
+        assert np.all(np.isnan(out[[0, 1, 2, 3, 5]])), (name, out)
+
+
+@pytest.mark.parametrize("name", ["reversed nodes", "nan in ln p", "ln p shorter than ln u"])
+def test_bad_law_table_through_python_layer(law, name):
+    from dataclasses import replace
+
+    bad = replace(law, table=BAD_TABLES[name](law.table))
+    p, k, status = bad.evaluate([1e-9, 2e-9])
+    assert np.all(status == BAD_LAW) and np.all(np.isnan(p)) and np.all(np.isnan(k))
+    with pytest.raises(ValueError, match=r"table: the contact law's table must be"):
+        bad.pressure_at(1e-9)
+    assert "Fritsch-Carlson" in STATUS_MESSAGES[BAD_LAW]
+
+
+def test_valid_table_is_accepted_and_unchanged(law):
+    """The builder's tables pass the check, and the checked entry points give what the
+    table gives (the bad-value codes still come first for a good table)."""
+    out, codes = _user_calls(law.table, law.separation[10] * 1.001, law.pressure[20] * 0.999)
+    assert list(codes) == [OK] * 6 and np.all(np.isfinite(out))
+    for rtol in (1e-4, 1e-6, 1e-10):
+        for surface, e in ((SEED, 1e9), (pf.SelfAffine(hurst=0.3, q0=1e3, q1=1e10,
+                                                        h_rms=1e-6), 1e8)):
+            t = embed.contact_law(surface, e_star=e, energy_correction=0.45, rtol=rtol).table
+            assert embed.law_status(t) == OK
+    assert embed.law_pressure(law.table, 0.0) == (pytest.approx(np.nan, nan_ok=True),
+                                                  BAD_SEPARATION)
+    assert embed.law_separation(law.table, -1.0)[1] == BAD_PRESSURE
+    # the table read back from the CSV columns is the same table
+    assert embed.law_status(tuple(a.copy() for a in law.table)) == OK
+
+
+def test_law_sweep_refuses_outputs_of_another_length(law):
+    u = np.full(4, 1e-9)
+    p, k, st = np.empty(3), np.empty(4), np.empty(4, dtype=np.int64)
+    embed.law_sweep(law.table, u, p, k, st)
+    assert np.all(st == BAD_INPUT) and np.all(np.isnan(k)) and np.all(np.isnan(p))
+
+
+# ---------------------------------------------------------------------------------------------
+# item 13: separation at the ends of the pressure range
+# ---------------------------------------------------------------------------------------------
+def test_separation_underflow_is_flagged_and_its_inverse_says_why():
+    r = pf.solve_separation(SEED, [1e9, 1e11], e_star=1e9)
+    assert list(r.status) == [OK, SEPARATION_UNDERFLOW] and not r.success
+    assert r.separation[1] == 0.0 and "underflows" in r.message
+    back = pf.pressure_at_separation(SEED, r.separation[0], e_star=1e9)
+    assert abs(back - 1e9) <= 1e-10 * 1e9
+    with pytest.raises(ValueError, match=r"separation must be > 0 \[m\].*underflow.*"
+                                         r"SEPARATION_UNDERFLOW"):
+        pf.pressure_at_separation(SEED, r.separation, e_star=1e9)
+
+
+def test_separation_round_trip_up_to_the_underflow():
+    """Every u with status 0 maps back to its pressure; the flag starts where terms of u's
+    sum can leave the doubles' normal range (u < 1e-292 m). A flagged u that is not 0 has
+    lost digits (the sum's terms underflowed: here 3.5e-9 off in p), so only its order is
+    checked: its inverse lies beyond every unflagged pressure."""
+    e = 1e9
+    p = np.geomspace(1e-3, 2e10, 400)
+    r = pf.solve_separation(SEED, p, e_star=e)
+    ok = r.status == OK
+    assert ok[:100].all() and not ok[-1]
+    flagged = r.status == SEPARATION_UNDERFLOW
+    assert np.all(ok | flagged)
+    assert np.all(r.separation[ok] >= 1e-292) and np.all(r.separation[flagged] < 1e-292)
+    rtol = 1e-10
+    back = pf.pressure_at_separation(SEED, r.separation[ok], e_star=e, rtol=rtol)
+    np.testing.assert_allclose(back, p[ok], rtol=rtol)
+    tiny = flagged & (r.separation > 0)
+    assert tiny.any()
+    back = pf.pressure_at_separation(SEED, r.separation[tiny], e_star=e, rtol=rtol)
+    assert np.all(np.isfinite(back)) and np.all(back > p[ok].max())
+    assert np.all(np.diff(back) > 0)
+
+
+def test_zero_pressure_is_one_behaviour_everywhere():
+    """p = 0: u = inf, K = 0, U_el = 0 from solve_separation, ContactResult.separation and
+    the inverse (inf -> 0), all unflagged."""
+    r = pf.solve_separation(SEED, [0.0, 1e6], e_star=1e9)
+    assert r.success and list(r.status) == [OK, OK]
+    assert r.separation[0] == math.inf and r.stiffness[0] == 0.0 and r.elastic_energy[0] == 0.0
+    assert r.area[0] == 0.0
+    c = pf.solve_contact(SEED, [0.0, 1e6], e_star=1e9)
+    np.testing.assert_array_equal(c.separation, r.separation)
+    np.testing.assert_array_equal(c.stiffness, r.stiffness)
+    assert pf.pressure_at_separation(SEED, math.inf, e_star=1e9) == 0.0
+    back = pf.pressure_at_separation(SEED, r.separation, e_star=1e9)
+    assert back[0] == 0.0 and abs(back[1] / 1e6 - 1) <= 1e-10
+    with pytest.raises(ValueError, match=r"pressure must be >= 0.*pressure\[0\] = -1.0"):
+        pf.solve_separation(SEED, [-1.0], e_star=1e9)
+
+
+def test_contact_result_separation_warns_where_flagged():
+    c = pf.solve_contact(SEED, [1e6, 1e11], e_star=1e9)
+    with pytest.warns(RuntimeWarning, match=r"separation: 1 of 2 pressures flagged.*underflows"):
+        u = c.separation
+    assert u[1] == 0.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert np.isfinite(pf.solve_contact(SEED, [1e6], e_star=1e9).separation).all()
