@@ -144,19 +144,24 @@ class TabulatedPSD(Surface):
         Parameters
         ----------
         heights : array_like
-            Heights on a uniform grid, all defined (no NaN): 1-D (one line scan), 2-D (a map,
-            rows along y), or 2-D with ``line_scans=True`` (parallel line scans, one per row,
-            whose 1-D spectra are averaged). [m]
+            Heights on a uniform grid, all defined (no NaN): 1-D (one line scan of at least 4
+            points), 2-D (a map of at least 4 x 4 pixels, rows along y), or 2-D with
+            ``line_scans=True`` (parallel line scans, one per row, whose 1-D spectra are
+            averaged). Heights and pixel size must give a spectrum C = |h~|²/((2π)² A) and
+            moments of it that double precision represents (heights in metres: a map in
+            nm given as numbers of nm is off by 1e-36 in C). [m]
         pixel_size : float or sequence of float
-            Grid spacing: one value, or (Δy, Δx) for a map. [m]
+            Grid spacing: one value, or (Δy, Δx) for a map; the scan's size, area and
+            Nyquist wavevector π/Δx must be normal doubles. [m]
         q0 : float, optional
             Lower band limit, >= 2π/L (L the longer side of the scan); default 2π/L. [1/m]
         q1 : float, optional
             Upper band limit, <= π/Δx (Nyquist); default π/Δx, the reliability cut-off
             ``info['q_reliable']`` of a topography that knows a better one. [1/m]
         bins_per_decade : int, optional
-            Logarithmic bins per decade of q in which the raw spectrum is averaged (default
-            10). [-]
+            Logarithmic bins per decade of q in which the raw spectrum is averaged, a whole
+            number in [1, 1000] (default 10; finer bins hold no mode on a scan's lower
+            decades). [-]
         window : {'hann', 'none'}, optional
             Window against the leakage of non-periodic data; default 'none' for periodic data,
             'hann' otherwise (normalised to a mean square of 1). [-]
@@ -168,8 +173,9 @@ class TabulatedPSD(Surface):
         line_scans : bool, optional
             Treat 2-D heights as line scans; default False (1-D heights are always one). [-]
         hurst : float, optional
-            H of the 1-D to 2-D conversion of line scans; default fitted to the 1-D spectrum
-            over the band (``info['hurst']``). [-]
+            H in [0, 1] of the 1-D to 2-D conversion of line scans; default fitted to the 1-D
+            spectrum over the band (``info['hurst']``). Line scans only: a 2-D map (without
+            ``line_scans=True``) refuses it, as it has no conversion to make. [-]
 
         Returns
         -------
@@ -364,7 +370,7 @@ def _surface_from_topography_file(file, q0=None, q1=None, hurst=None, bins_per_d
     topography = read_topography(file, unit=unit,
                                  physical_sizes=tuple(physical_sizes) if physical_sizes else None)
     return TabulatedPSD.from_topography(topography, q0=q0, q1=q1, hurst=hurst,
-                                        bins_per_decade=int(bins_per_decade))
+                                        bins_per_decade=bins_per_decade)
 
 
 def _surface_from_spectrum_file(file, q_unit=None, C_unit=None, q0=None, q1=None) -> TabulatedPSD:

@@ -92,6 +92,18 @@ _LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "nm": 1e-9, "Å"
 _WINDOWS = ("hann", "none")
 _DETRENDS = ("mean", "plane")
 
+#: most log bins per decade: finer bins hold no mode on any measured scan's lower decades
+#: (a line scan's first decade holds 9 modes, a map's ~300) and are merged with their
+#: neighbours at a cost that grows with the square of their number (1e6 per decade ran for
+#: minutes); 1000 takes ~1 s on a 1024 x 1024 map
+MAX_BINS_PER_DECADE = 1000
+#: the fewest points of a line scan, and pixels along each side of a map
+MIN_POINTS = 4
+#: relative tolerance of Parseval's identity in :func:`mode_spectrum`: the mode powers sum
+#: to the data's variance up to the FFT's rounding (~1e-15 log N); a larger miss means the
+#: spectrum under- or overflowed double precision
+PARSEVAL_RTOL = 1e-9
+
 
 # ----------------------------------------------------------------------------------------------
 # argument checks
@@ -128,6 +140,85 @@ def _check_heights(heights, name: str = "heights") -> np.ndarray:
             f"fill them first, e.g. SurfaceTopography's interpolate_undefined_data(), or "
             f"crop the map to a region without them")
     return arr
+
+
+def _check_size(h: np.ndarray, lines: bool, name: str = "heights") -> None:
+    """At least MIN_POINTS points per line scan, or MIN_POINTS x MIN_POINTS pixels for a
+    map (before any band limit is derived from the size)."""
+    if lines:
+        n = h.shape[-1]
+        if n < MIN_POINTS or h.size == 0:
+            raise ValueError(f"{name}: a line scan must have at least {MIN_POINTS} points [-]; "
+                             f"got shape {h.shape}")
+    elif min(h.shape) < MIN_POINTS:
+        raise ValueError(f"{name}: a map must have at least {MIN_POINTS} x {MIN_POINTS} "
+                         f"pixels [-]; got shape {h.shape}"
+                         + (" (parallel profiles: pass line_scans=True)"
+                            if h.shape[-1] >= MIN_POINTS and min(h.shape) > 0 else ""))
+
+
+def _check_extent(pixel, shape, lines: bool) -> None:
+    """The scan's lengths, area and wavevectors must be normal doubles (a pixel_size off by
+    many orders of magnitude, e.g. a unit mistake, makes them 0 or inf)."""
+    lengths = [n * d for n, d in zip(shape[-len(pixel):], pixel)]
+    area = lengths[0] if lines else lengths[0] * lengths[1]
+    numbers = [*lengths, area, (2.0 * math.pi) ** 2 / area if area > 0 else 0.0,
+               *(math.pi / d for d in pixel)]
+    tiny = np.finfo(float).tiny
+    if not all(tiny <= x < math.inf for x in numbers):
+        given = pixel[0] if len(set(pixel)) == 1 else pixel
+        raise ValueError(
+            f"pixel_size must give a scan whose size, area and wavevectors are normal double "
+            f"precision numbers [m] (pixel sizes are in metres, e.g. 1e-8 for 10 nm); got "
+            f"pixel_size = {given!r} for shape {tuple(shape)}: scan "
+            f"{'length' if lines else 'area'} {area!r}, Nyquist wavevector "
+            f"{math.pi / min(pixel)!r} 1/m")
+
+
+def _check_representable(x: np.ndarray, power_sum: float, cell: float, pixel,
+                         heights_max: float, lines: bool) -> None:
+    """Parseval's identity: the mode powers (sum C * cell, the q = 0 mode left out) equal
+    the variance of the transformed data ``x`` (for line scans, the mean of the rows'
+    variances); an under- or overflow of the spectrum in double precision breaks it. The
+    variance is taken of x divided by its largest value, so it cannot under- or overflow
+    itself; the FFT's rounding is allowed relative to that largest value too."""
+    scale = float(np.max(np.abs(x))) if x.size else 0.0
+    if not math.isfinite(scale):
+        rms_direct = math.inf
+    elif scale == 0.0:
+        rms_direct = 0.0
+    else:
+        y = x / scale
+        mean = y.mean(axis=-1, keepdims=True) if lines else y.mean()
+        var = float(np.mean((y - mean) ** 2))
+        rms_direct = scale * math.sqrt(var)
+    with np.errstate(over="ignore", invalid="ignore"):
+        ms = power_sum * cell
+    rms_spectrum = math.sqrt(ms) if ms >= 0 else math.nan
+    if (math.isfinite(rms_direct) and math.isfinite(rms_spectrum) and abs(
+            rms_spectrum - rms_direct) <= PARSEVAL_RTOL * rms_direct + 1e-12 * scale):
+        return
+    given = pixel[0] if len(set(pixel)) == 1 else pixel
+    raise ValueError(
+        f"heights and pixel_size give a spectrum C = |h~|^2/((2 pi)^2 A) that is not "
+        f"representable in double precision [m^4]: it "
+        f"{'underflows' if rms_spectrum < rms_direct else 'overflows'} (the rms height from "
+        f"the spectrum is {rms_spectrum!r} m, from the heights {rms_direct!r} m); got "
+        f"max |heights| = {heights_max!r}, pixel_size = {given!r} (both are in metres: "
+        f"convert them, e.g. nm * 1e-9)")
+
+
+def user_terms_table(table, q, c, pixel_size, heights_max, **kwargs):
+    """``table(q, C, **kwargs)`` of a spectrum measured from heights, its refusal (a moment
+    of the spectrum not finite in double precision) said in the terms of the data."""
+    try:
+        return table(q, c, **kwargs)
+    except ValueError as exc:
+        raise ValueError(
+            f"heights and pixel_size must give a spectrum whose moments are finite in double "
+            f"precision [m^4]; got max |heights| = {heights_max!r}, pixel_size = "
+            f"{pixel_size!r} (both are in metres: convert them, e.g. nm * 1e-9); the table "
+            f"of their spectrum says: {exc}") from None
 
 
 def _choice(value, name: str, choices) -> str:
@@ -206,38 +297,46 @@ def mode_spectrum(heights, pixel_size, *, line_scans=None, window="none", detren
     """
     h = _check_heights(heights)
     lines = (h.ndim == 1) if line_scans is None else bool(line_scans)
+    _check_size(h, lines)
     if h.ndim == 1:
         lines = True
         h = h[None, :]
     window = _choice("none" if window is None else window, "window", _WINDOWS)
     detrend = _choice(detrend, "detrend", _DETRENDS)
+    h_max = float(np.max(np.abs(h)))
     if lines:
         dx = _pixel_sizes(pixel_size, 1)[0] if np.ndim(pixel_size) == 0 else \
             _pixel_sizes(np.asarray(pixel_size, dtype=float).reshape(-1)[-1:], 1)[0]
         n = h.shape[-1]
-        if n < 4:
-            raise ValueError(f"a line scan must have at least 4 points [-]; got {n}")
-        hd = _detrend(h, detrend, 1)
-        if window == "hann":
-            hd = hd * _window_1d(n)[None, :]
-        length = n * dx
-        f = np.fft.fft(hd, axis=-1) * dx
-        c1 = (np.abs(f) ** 2).mean(axis=0) / (2.0 * math.pi * length)
+        _check_extent((dx,), h.shape, True)
+        with np.errstate(all="ignore"):        # an under- or overflow is refused below
+            hd = _detrend(h, detrend, 1)
+            if window == "hann":
+                hd = hd * _window_1d(n)[None, :]
+            length = n * dx
+            f = np.fft.fft(hd, axis=-1) * dx
+            c1 = (np.abs(f) ** 2).mean(axis=0) / (2.0 * math.pi * length)
         q = np.abs(np.fft.fftfreq(n, 1.0 / n)) * (2.0 * math.pi / length)
         keep = q > 0
+        with np.errstate(over="ignore"):
+            power_sum = float(np.sum(c1[keep]))
+        _check_representable(hd, power_sum, 2.0 * math.pi / length, (dx,), h_max, True)
         return q[keep], c1[keep], 2.0 * math.pi / length
     dy, dx = _pixel_sizes(pixel_size, 2)
     ny, nx = h.shape
-    if min(ny, nx) < 4:
-        raise ValueError(f"a map must have at least 4 x 4 pixels [-]; got shape {h.shape}")
-    hd = _detrend(h, detrend, 2)
-    if window == "hann":
-        hd = hd * np.outer(_window_1d(ny), _window_1d(nx))
-    area = ny * dy * nx * dx
-    f = np.fft.fft2(hd) * (dx * dy)
-    c2 = np.abs(f) ** 2 / ((2.0 * math.pi) ** 2 * area)
+    _check_extent((dy, dx), h.shape, False)
+    with np.errstate(all="ignore"):            # an under- or overflow is refused below
+        hd = _detrend(h, detrend, 2)
+        if window == "hann":
+            hd = hd * np.outer(_window_1d(ny), _window_1d(nx))
+        area = ny * dy * nx * dx
+        f = np.fft.fft2(hd) * (dx * dy)
+        c2 = np.abs(f) ** 2 / ((2.0 * math.pi) ** 2 * area)
     q = _wavevectors((ny, nx), (dy, dx))
     keep = q > 0
+    with np.errstate(over="ignore"):
+        power_sum = float(np.sum(c2[keep]))
+    _check_representable(hd, power_sum, (2.0 * math.pi) ** 2 / area, (dy, dx), h_max, False)
     return q[keep], c2[keep], (2.0 * math.pi) ** 2 / area
 
 
@@ -383,6 +482,7 @@ def spectrum_from_heights(heights, pixel_size, *, table, q0=None, q1=None, bins_
     lines = (h.ndim == 1) if line_scans is None else bool(line_scans)
     if h.ndim == 1:
         lines = True
+    _check_size(h, lines)
     periodic = bool(periodic)
     if window is None:
         window = "none" if periodic else "hann"
@@ -391,9 +491,26 @@ def spectrum_from_heights(heights, pixel_size, *, table, q0=None, q1=None, bins_
         detrend = "mean" if periodic else "plane"
     detrend = _choice(detrend, "detrend", _DETRENDS)
     bins_per_decade = check_whole_number(bins_per_decade, "bins_per_decade")
+    if bins_per_decade > MAX_BINS_PER_DECADE:
+        raise ValueError(f"bins_per_decade must be a whole number in [1, {MAX_BINS_PER_DECADE}] "
+                         f"[-] (finer bins hold no Fourier mode on a scan's lower decades and "
+                         f"are merged with their neighbours, at a cost that grows with the "
+                         f"square of their number); got bins_per_decade = {bins_per_decade!r}")
+    if hurst is not None:
+        arr = as_float_array(hurst, "hurst", "-", ndim=(0,))
+        H = float(arr)
+        if not (math.isfinite(H) and 0.0 <= H <= 1.0):
+            raise ValueError(f"hurst must be in [0, 1] [-]; got hurst = {H!r}")
+        if not lines:
+            raise ValueError(f"hurst applies to line scans only (the 1-D to 2-D conversion of "
+                             f"their spectrum) [-]; a 2-D map gives its 2-D spectrum directly: "
+                             f"leave hurst out, or pass line_scans=True for rows that are "
+                             f"parallel profiles; got hurst = {H!r} with a map of shape "
+                             f"{h.shape}")
     if lines:
         dx = _pixel_sizes(pixel_size, 1)[0] if np.ndim(pixel_size) == 0 else \
             _pixel_sizes(np.asarray(pixel_size, dtype=float).reshape(-1)[-1:], 1)[0]
+        _check_extent((dx,), h.shape, True)
         n = h.shape[-1]
         length = n * dx
         q_lowest = 2.0 * math.pi / length
@@ -401,6 +518,7 @@ def spectrum_from_heights(heights, pixel_size, *, table, q0=None, q1=None, bins_
         length_text = f"L = {length!r} m"
     else:
         dy, dx = _pixel_sizes(pixel_size, 2)
+        _check_extent((dy, dx), h.shape, False)
         ly, lx = h.shape[0] * dy, h.shape[1] * dx
         q_lowest = 2.0 * math.pi / max(lx, ly)
         q_nyquist = math.pi / max(dx, dy)
@@ -410,6 +528,12 @@ def spectrum_from_heights(heights, pixel_size, *, table, q0=None, q1=None, bins_
 
     qm, cm, cell = mode_spectrum(h, dx if lines else (dy, dx), line_scans=lines,
                                  window=window, detrend=detrend)
+    h_max = float(np.max(np.abs(h)))
+    given_pixel = pixel_size
+
+    def checked_table(q, c):
+        return user_terms_table(table, q, c, given_pixel, h_max)
+
     edges = _log_edges(q0, q1, bins_per_decade)
     if lines:
         # the modes of a line scan sit on the lattice k 2π/L: interior edges half-way between
@@ -441,23 +565,22 @@ def spectrum_from_heights(heights, pixel_size, *, table, q0=None, q1=None, bins_
             "h_rms_data": math.sqrt(cm.sum() * cell)}
     if lines:
         # 2 ∫_bin C_1D dq = the bin's mean square (q of both signs)
-        q1d, c1d = _conserving_table(edges, 0.5 * power, 0, table)
+        q1d, c1d = _conserving_table(edges, 0.5 * power, 0, checked_table)
         centres = np.sqrt(edges[:-1] * edges[1:])
         if hurst is None:
             H = _hurst_from_line_spectrum(centres, 0.5 * power / np.diff(edges), cell)
             info["hurst_fitted"] = True
-        else:
-            arr = as_float_array(hurst, "hurst", "-", ndim=(0,))
-            H = float(arr)
-            if not (math.isfinite(H) and 0.0 <= H <= 1.0):
-                raise ValueError(f"hurst must be in [0, 1] [-]; got hurst = {H!r}")
+        else:                                   # H checked above
             info["hurst_fitted"] = False
         factor = math.gamma(1.0 + H) / (math.sqrt(math.pi) * math.gamma(H + 0.5))
         info.update(hurst=H, line_factor=factor, psd_1d=(q1d, c1d), n_lines=int(
             1 if h.ndim == 1 else h.shape[0]), scan_length=length)
-        return q1d, c1d * factor / q1d, q0, q1, info
+        c2d = c1d * factor / q1d
+        checked_table(q1d, c2d)                # the caller's table of it, refused in these terms
+        return q1d, c2d, q0, q1, info
     # 2π ∫_bin q C dq = the bin's mean square
-    q2, c2 = _conserving_table(edges, power / (2.0 * math.pi), 1, table)
+    q2, c2 = _conserving_table(edges, power / (2.0 * math.pi), 1, checked_table)
+    checked_table(q2, c2)                      # the caller's table of it, refused in these terms
     info.update(scan_size=(ly, lx), shape=tuple(h.shape))
     return q2, c2, q0, q1, info
 

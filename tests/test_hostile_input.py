@@ -250,3 +250,59 @@ def test_contact_result_separation_warns_where_flagged():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert np.isfinite(pf.solve_contact(SEED, [1e6], e_star=1e9).separation).all()
+
+
+# ---------------------------------------------------------------------------------------------
+# items 7, 8: TabulatedPSD.from_heights
+# ---------------------------------------------------------------------------------------------
+_RNG_MAP = np.random.default_rng(11).normal(size=(64, 64)) * 1e-6
+
+
+def test_bins_per_decade_is_bounded():
+    with pytest.raises(ValueError, match=r"bins_per_decade must be a whole number in \[1, 1000\]"
+                                         r".*got bins_per_decade = 1000000"):
+        pf.TabulatedPSD.from_heights(_RNG_MAP, 1e-6, bins_per_decade=10**6)
+    s = pf.TabulatedPSD.from_heights(_RNG_MAP, 1e-6, bins_per_decade=1000)
+    assert s.info["bins_per_decade"] == 1000
+    with pytest.raises(ValueError, match=r"bins_per_decade must be a whole number"):
+        pf.TabulatedPSD.from_heights(_RNG_MAP, 1e-6, bins_per_decade=10.5)
+
+
+@pytest.mark.parametrize("heights, pixel, kw, match", [
+    (np.zeros((0, 0)), 1e-6, {}, r"heights: a map must have at least 4 x 4 pixels.*\(0, 0\)"),
+    (np.zeros(0), 1e-6, {}, r"heights: a line scan must have at least 4 points.*\(0,\)"),
+    (np.zeros((0, 8)), 1e-6, {"line_scans": True}, r"heights: a line scan must have"),
+    (np.ones((1, 1)), 1e-6, {}, r"heights: a map must have at least 4 x 4 pixels.*\(1, 1\)"),
+    (np.ones((2, 2)), 1e-6, {}, r"heights: a map must have at least 4 x 4 pixels.*\(2, 2\)"),
+    (np.ones((2, 64)), 1e-6, {}, r"\(2, 64\) \(parallel profiles: pass line_scans=True\)"),
+    (_RNG_MAP, 1e-300, {}, r"pixel_size must give a scan whose size, area and wavevectors "
+                           r"are normal.*pixel_size = 1e-300"),
+    (_RNG_MAP, 1e300, {}, r"pixel_size must give a scan.*pixel_size = 1e\+300"),
+    (_RNG_MAP[0], 1e-320, {}, r"pixel_size must give a scan.*scan length"),
+    (_RNG_MAP * 1e306, 1e-6, {}, r"heights and pixel_size give a spectrum .* not "
+                                 r"representable in double precision \[m\^4\]: it overflows"),
+    (_RNG_MAP * 1e-200, 1e-6, {}, r"heights and pixel_size give a spectrum .* underflows"),
+    (_RNG_MAP[:8] * 1e-200, 1e-6, {"line_scans": True}, r"underflows"),
+    (_RNG_MAP * 1e140, 1e-100, {}, r"heights and pixel_size must give a spectrum whose moments "
+                                 r"are finite.*max \|heights\|"),
+    (_RNG_MAP, 1e-6, {"hurst": 1.5}, r"hurst must be in \[0, 1\] \[-\]; got hurst = 1.5"),
+    (_RNG_MAP, 1e-6, {"hurst": 0.5}, r"hurst applies to line scans only.*hurst = 0.5 with a "
+                                     r"map of shape \(64, 64\)"),
+])
+def test_from_heights_refuses_in_the_users_terms(heights, pixel, kw, match):
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # no numpy over/underflow warnings first
+        with pytest.raises(ValueError, match=match):
+            pf.TabulatedPSD.from_heights(heights, pixel, **kw)
+
+
+def test_from_heights_extreme_but_representable_scales_agree():
+    """Heights and pixels scaled by powers of ten that double precision still carries give
+    the same relative spectrum (C scales as h^2 dx^2, q as 1/dx)."""
+    ref = pf.TabulatedPSD.from_heights(_RNG_MAP, 1e-6, periodic=True)
+    for hs, px in [(1e-100, 1e-6), (1e-140, 1e-6), (1e100, 1e-6), (1e-6, 1e-40), (1e-20, 1e20)]:
+        s = pf.TabulatedPSD.from_heights(_RNG_MAP * (hs / 1e-6), px, periodic=True)
+        np.testing.assert_allclose(s.q_table * px, ref.q_table * 1e-6, rtol=1e-12)
+        np.testing.assert_allclose(s.C_table / (hs * px) ** 2, ref.C_table / 1e-24, rtol=1e-9)
+    line = pf.TabulatedPSD.from_heights(_RNG_MAP[:4], 1e-6, line_scans=True, hurst=0.5)
+    assert line.info["hurst"] == 0.5 and not line.info["hurst_fitted"]
