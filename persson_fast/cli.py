@@ -53,8 +53,12 @@ pull_off_stress_Pa
 
 ``contact --csv FILE`` writes pressure_Pa, area, force_per_contact_area_Pa,
 compression_per_contact_area_Pa (the same quantities for the chosen scene, equal without
-adhesion), status (0 ok, else the package's status code) and, with ``--pull-off``,
-pull_off_stress_Pa.
+adhesion), status (0 ok, else the package's status code: the area's, or where that is 0 and
+``--separation`` is given, the separation's, e.g. 22 for a u that underflowed) and, with
+``--pull-off``, pull_off_stress_Pa (0 without adhesion). ``--pull-off`` is refused (exit
+code 2) with a corrected theory (``--theory`` other than persson01) or a yield wall
+(``--hardness``): their pull-off stress is not yet available, and the original theory's
+elastic one beside their areas would be another scene's number.
 
 This module holds the subcommands and :func:`main`; the parser is in
 :mod:`persson_fast.cli_parser`, the settings of ``contact`` (TOML file and flags) in
@@ -323,15 +327,21 @@ def _cmd_contact(args) -> int:
         what = f"constant hardness {h:.5g} Pa" if isinstance(h, float) else f"hardness {h!r}"
         print(f"yield wall: {what}; A/A0 = elastic + plastic")
         extra = {"elastic_area": res.elastic_area, "plastic_area": res.plastic_area}
+    status = res.status
+    sep = None
     if s["separation"]:
+        gamma_s = s["adhesion"].get("energy_correction")
         try:
-            extra.update({"separation_m": res.separation, "stiffness_Pa_per_m": res.stiffness,
-                          "elastic_energy_J_per_m2": res.elastic_energy})
+            sep = pf.solve_separation(surface, res.pressure, e_star=e_star,
+                                      energy_correction=gamma_s)
         except ValueError as exc:
             raise CommandError(f"--separation: {exc}") from None
+        extra.update({"separation_m": sep.separation, "stiffness_Pa_per_m": sep.stiffness,
+                      "elastic_energy_J_per_m2": sep.elastic_energy})
+        # a row's status: the area's, else the separation's (e.g. 22, an underflowed u)
+        status = np.where(res.status != 0, res.status, sep.status)
         print(f"separation: closed form (Persson 2007); decay length u0 = "
-              f"{pf.decay_length(surface, e_star=e_star, energy_correction=s['adhesion'].get('energy_correction')):.5g} m "
-              f"(p ~ exp(-u/u0) at small p)")
+              f"{sep.decay_length:.5g} m (p ~ exp(-u/u0) at small p)")
     head = f"{'pressure [Pa]':>14}  {'A/A0':>12}  {'mean p_c [Pa]':>13}"
     titles = {"elastic_area": "A_el/A0", "plastic_area": "A_pl/A0", "separation_m": "u [m]",
               "stiffness_Pa_per_m": "K [Pa/m]", "elastic_energy_J_per_m2": "U_el [J/m^2]"}
@@ -339,21 +349,26 @@ def _cmd_contact(args) -> int:
         head += f"  {titles[key]:>12}"
     print(head + "  status")
     for i, (p, a, mp, st) in enumerate(zip(res.pressure, res.area, res.mean_contact_pressure,
-                                           res.status)):
+                                           status)):
         mp_s = f"{mp:13.5g}" if np.isfinite(mp) else f"{'-':>13}"
         more = "".join(f"  {col[i]:12.6g}" for col in extra.values())
         print(f"{p:14.6g}  {a:12.6g}  {mp_s}{more}  {'ok' if st == 0 else f'code {int(st)}'}")
     if not res.success:
         print(f"warning: {res.message}")
+    if sep is not None and not sep.success:
+        print(f"warning (separation): {sep.message}")
     if s["adhesion"].get("work_of_adhesion", 0.0) > 0:
         print(f"adhesion: work of adhesion {s['adhesion']['work_of_adhesion']:g} J/m^2, sticky "
               f"(gamma_eff(1) > 0): {bool(res.sticky[0])}, fixed-point iterations <= "
               f"{int(res.iterations.max())}")
-        if s["pull_off"]:
-            t1 = time.perf_counter()
-            sigma_c = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
-                                  **s["adhesion"])
-            print(f"pull-off stress: {sigma_c:.5g} Pa ({time.perf_counter() - t1:.3g} s)")
+    if s["pull_off"]:
+        # (a corrected theory or a yield wall was refused with the settings: cli_config)
+        t1 = time.perf_counter()
+        sigma_c = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
+                              **{"work_of_adhesion": 0.0, **s["adhesion"]})
+        print(f"pull-off stress: {sigma_c:.5g} Pa ({time.perf_counter() - t1:.3g} s"
+              + (", no adhesion" if not s["adhesion"].get("work_of_adhesion", 0.0) > 0
+                 else "") + ")")
     timing = f"time: {elapsed:.3g} s"
     if "compile" in res.timings:
         timing += f" (compile {res.timings['compile']:.3g} s)"
@@ -365,7 +380,7 @@ def _cmd_contact(args) -> int:
         columns = {"pressure_Pa": res.pressure, "area": res.area,
                    "force_per_contact_area_Pa": res.mean_contact_pressure,
                    "compression_per_contact_area_Pa": res.mean_contact_stress,
-                   "status": res.status, **extra}
+                   "status": status, **extra}
         if sigma_c is not None:
             columns["pull_off_stress_Pa"] = np.full(res.pressure.shape, sigma_c)
         with _OutputSet() as outputs:

@@ -121,7 +121,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="gamma_S of S = gamma_S + (1 - gamma_S) P^2 (default: S = 1)")
     g.add_argument("--detachment-prefactor", type=float, metavar="BETA",
                    help="beta of seed Eq. 8 (default 1/sqrt 2)")
-    g.add_argument("--pull-off", action="store_true", help="also compute the pull-off stress")
+    g.add_argument("--pull-off", action="store_true",
+                   help="also compute the pull-off stress (0 without adhesion); not yet "
+                        "available with a corrected --theory or with --hardness")
     ct.add_argument("--hardness", type=float, metavar="SIGMA_Y",
                     help="penetration hardness [Pa]: the yield wall; adds the elastic and "
                          "plastic area columns (no adhesion); constant, or at zeta = 1 with "

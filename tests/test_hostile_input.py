@@ -4,6 +4,7 @@ Each test is one reproducer (or a family of them): the answer is a result within
 tolerance, a result flagged by its status, or a ValueError that names the argument.
 """
 import math
+import re
 import warnings
 
 import numba
@@ -306,3 +307,85 @@ def test_from_heights_extreme_but_representable_scales_agree():
         np.testing.assert_allclose(s.C_table / (hs * px) ** 2, ref.C_table / 1e-24, rtol=1e-9)
     line = pf.TabulatedPSD.from_heights(_RNG_MAP[:4], 1e-6, line_scans=True, hurst=0.5)
     assert line.info["hurst"] == 0.5 and not line.info["hurst_fitted"]
+
+
+# ---------------------------------------------------------------------------------------------
+# items 10, 11: the command line
+# ---------------------------------------------------------------------------------------------
+_SA_FLAGS = ["--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
+             "--h-rms", "1e-6", "--e-star", "1e9"]
+
+
+def _contact(*flags):
+    from persson_fast import cli
+
+    return cli.main(["contact", *flags])
+
+
+@pytest.mark.parametrize("line, match", [
+    ('separation = "yes"', r"separation must be true or false \(a TOML boolean, unquoted\); "
+                           r"got 'yes'"),
+    ("separation = 1", r"separation must be true or false.*got 1"),
+    ('pull_off = "true"', r"pull_off must be true or false.*got 'true'"),
+    ("csv = 5", r"csv must be a string; got 5"),
+    ("method = 3", r"method must be a string; got 3"),
+    ("theory = 1", r"theory must be a string; got 1"),
+])
+def test_config_refuses_wrong_types(tmp_path, capsys, line, match):
+    config = tmp_path / "scene.toml"
+    config.write_text(f"e_star = 1e9\npressures = [1e6]\n{line}\n[surface]\nmodel = "
+                      f"'self-affine'\nhurst = 0.8\nq0 = 1e4\nq1 = 1e9\nh_rms = 1e-6\n")
+    assert _contact("--config", str(config)) == 2
+    assert re.search(match, capsys.readouterr().err)
+
+
+def test_config_whole_number_keys_are_not_truncated(tmp_path, capsys):
+    config = tmp_path / "scene.toml"
+    config.write_text("e_star = 1e9\npressures = [1e6]\n[surface]\nmodel = 'topography'\n"
+                      "file = 'map.npy'\nbins_per_decade = 10.5\n")
+    assert _contact("--config", str(config)) == 2
+    assert "surface.bins_per_decade must be a whole number; got 10.5" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("flags, match", [
+    (["--theory", "wm17", "--work-of-adhesion", "0.05", "--pull-off"],
+     r"--pull-off is not yet available for the corrected theories.*got --theory wm17"),
+    (["--theory", "yp08", "--work-of-adhesion", "0.05", "--pull-off"],
+     r"not yet available for the corrected theories.*--theory yp08"),
+    (["--theory", "xu24", "--pull-off"], r"not yet available for the corrected theories"),
+    (["--hardness", "1e8", "--pull-off"], r"--pull-off is not yet available with a yield wall"),
+])
+def test_pull_off_refused_where_not_available(capsys, flags, match):
+    assert _contact(*_SA_FLAGS, "--pressure", "1e5", *flags) == 2
+    out = capsys.readouterr()
+    assert re.search(match, out.err) and "Traceback" not in out.err
+    assert "pull-off stress" not in out.out                  # refused before solving
+
+
+def test_pull_off_refused_from_config_too(tmp_path, capsys):
+    config = tmp_path / "scene.toml"
+    config.write_text("e_star = 1e9\npressures = [1e5]\ntheory = 'wm17'\nwork_of_adhesion = "
+                      "0.05\npull_off = true\n[surface]\nmodel = 'self-affine'\nhurst = 0.8\n"
+                      "q0 = 1e4\nq1 = 1e9\nh_rms = 1e-6\n")
+    assert _contact("--config", str(config)) == 2
+    assert "not yet available for the corrected theories" in capsys.readouterr().err
+
+
+def test_pull_off_without_adhesion_is_zero_not_silent(tmp_path, capsys):
+    path = tmp_path / "out.csv"
+    assert _contact(*_SA_FLAGS, "--pressure", "1e5", "--pull-off", "--csv", str(path)) == 0
+    assert "pull-off stress: 0 Pa" in capsys.readouterr().out
+    rows = path.read_text().splitlines()
+    assert rows[0].split(",")[-1] == "pull_off_stress_Pa" and float(rows[1].split(",")[-1]) == 0
+
+
+def test_separation_status_column_flags_an_underflow(tmp_path, capsys):
+    path = tmp_path / "out.csv"
+    assert _contact(*_SA_FLAGS, "--pressure", "0", "1e6", "2e10", "--separation", "--csv",
+                    str(path)) == 0
+    out = capsys.readouterr().out
+    assert f"code {SEPARATION_UNDERFLOW}" in out and "warning (separation):" in out
+    header, *rows = [line.split(",") for line in path.read_text().splitlines()]
+    status = [int(r[header.index("status")]) for r in rows]
+    assert status == [OK, OK, SEPARATION_UNDERFLOW]
+    assert rows[0][header.index("separation_m")] == "inf"
