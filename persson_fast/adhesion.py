@@ -141,20 +141,38 @@ def warm_adhesive_yield(prange: bool = False) -> None:
 
 
 def _controls(overrides, defaults=None):
+    """The fixed point's iteration controls: ``defaults`` (``ADHESION_DEFAULTS``) updated by
+    ``overrides`` -- None, or a mapping of control name to value (``adhesion_controls`` of
+    solve_contact, ``controls`` of pull_off) -- each value checked."""
+    from collections.abc import Mapping
+
+    def whole(name, minimum):
+        value = controls[name]
+        if (isinstance(value, bool)
+                or not isinstance(value, (int, np.integer, float, np.floating))
+                or not float(value).is_integer() or value < minimum):
+            raise ValueError(f"{name} must be a whole number >= {minimum} [-]; got {name} = "
+                             f"{value!r}")
+        return int(value)
+
     controls = dict(ADHESION_DEFAULTS if defaults is None else defaults)
-    if overrides:
+    if overrides is not None:
+        if not isinstance(overrides, Mapping):
+            raise ValueError(
+                f"adhesion controls (adhesion_controls of solve_contact, controls of pull_off) "
+                f"must be a dict of control names to values, e.g. {{'max_iter': 500}}; valid "
+                f"names: {sorted(controls)}; got {overrides!r} (a {type(overrides).__name__})")
         unknown = set(overrides) - set(controls)
         if unknown:
-            raise ValueError(f"unknown adhesion control(s) {sorted(unknown)}; valid: {sorted(controls)}")
+            raise ValueError(f"unknown adhesion control(s) {sorted(unknown, key=repr)}; valid: "
+                             f"{sorted(controls)}")
         controls.update(overrides)
-    if int(controls["max_iter"]) < 1:
-        raise ValueError(f"max_iter must be >= 1 [-]; got max_iter = {controls['max_iter']!r}")
-    if int(controls["m_hist"]) < 0:
-        raise ValueError(f"m_hist must be >= 0 [-]; got m_hist = {controls['m_hist']!r}")
-    if not 0.0 < float(controls["omega"]) <= 1.0:
-        raise ValueError(f"omega must lie in (0, 1] [-]; got omega = {controls['omega']!r}")
-    return {"max_iter": int(controls["max_iter"]), "m_hist": int(controls["m_hist"]),
-            "omega": float(controls["omega"]), "n_damp": int(controls["n_damp"])}
+    omega = controls["omega"]
+    if (isinstance(omega, bool) or not isinstance(omega, (int, float, np.integer, np.floating))
+            or not 0.0 < float(omega) <= 1.0):
+        raise ValueError(f"omega must lie in (0, 1] [-]; got omega = {omega!r}")
+    return {"max_iter": whole("max_iter", 1), "m_hist": whole("m_hist", 0),
+            "omega": float(omega), "n_damp": whole("n_damp", 0)}
 
 
 #: the most zeta-grid levels the a-posteriori error control adds to the three of every solve

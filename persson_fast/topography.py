@@ -490,6 +490,9 @@ def spectrum_from_heights(heights, pixel_size, *, table, q0=None, q1=None, bins_
     if detrend is None:
         detrend = "mean" if periodic else "plane"
     detrend = _choice(detrend, "detrend", _DETRENDS)
+    if isinstance(bins_per_decade, float) and not math.isfinite(bins_per_decade):
+        raise ValueError(f"bins_per_decade must be a whole number in [1, {MAX_BINS_PER_DECADE}] "
+                         f"[-]; got bins_per_decade = {bins_per_decade!r}")
     bins_per_decade = check_whole_number(bins_per_decade, "bins_per_decade")
     if bins_per_decade > MAX_BINS_PER_DECADE:
         raise ValueError(f"bins_per_decade must be a whole number in [1, {MAX_BINS_PER_DECADE}] "

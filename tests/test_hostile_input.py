@@ -389,3 +389,29 @@ def test_separation_status_column_flags_an_underflow(tmp_path, capsys):
     status = [int(r[header.index("status")]) for r in rows]
     assert status == [OK, OK, SEPARATION_UNDERFLOW]
     assert rows[0][header.index("separation_m")] == "inf"
+
+
+# ---------------------------------------------------------------------------------------------
+# item 12: adhesion controls
+# ---------------------------------------------------------------------------------------------
+_SA = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+
+
+@pytest.mark.parametrize("controls, match", [
+    ("fast", r"adhesion controls \(adhesion_controls of solve_contact, controls of pull_off\) "
+             r"must be a dict of control names to values.*got 'fast' \(a str\)"),
+    (["max_iter"], r"must be a dict.*got \['max_iter'\] \(a list\)"),
+    ({"fast": 1}, r"unknown adhesion control\(s\) \['fast'\]; valid: \['m_hist', 'max_iter', "
+                  r"'n_damp', 'omega'\]"),
+    ({"max_iter": 2.5}, r"max_iter must be a whole number >= 1 \[-\]; got max_iter = 2.5"),
+    ({"max_iter": "many"}, r"max_iter must be a whole number >= 1"),
+    ({"m_hist": math.inf}, r"m_hist must be a whole number >= 0.*inf"),
+    ({"n_damp": -1}, r"n_damp must be a whole number >= 0 \[-\]; got n_damp = -1"),
+    ({"omega": math.nan}, r"omega must lie in \(0, 1\] \[-\]; got omega = nan"),
+])
+def test_adhesion_controls_refused_clearly(controls, match):
+    with pytest.raises(ValueError, match=match):
+        pf.solve_contact(_SA, [1e6], e_star=1e9, work_of_adhesion=0.05, rtol=1e-3,
+                         adhesion_controls=controls)
+    with pytest.raises(ValueError, match=match):
+        pf.pull_off(_SA, e_star=1e9, work_of_adhesion=0.05, rtol=1e-3, controls=controls)
