@@ -17,7 +17,7 @@ from .adhesion import (ADHESIVE_JOBS, solve_adhesive_contact, warm_adhesion,
 from .methods import check_method, check_serves, choose_auto
 from .results import (ContactResult, Deferred, DiffusionResult, per_contact_area,
                       summarize_status)
-from .plasticity import check_below_hardness, check_hardness
+from .plasticity import YIELD_METHODS, check_below_hardness, check_hardness
 from .yield_api import solve_yield_contact, solve_yield_diffusion
 from .separation import ADHESION_REFUSED, contact_fields, warm_separation
 from .walls import check_wall_callable, sample_wall
@@ -100,7 +100,19 @@ def _is_linear(G: np.ndarray, rows: np.ndarray) -> bool:
 _WALL_BLOCK_ELEMENTS = 2_000_000
 
 
-def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, method="cn",
+#: what ``solve_diffusion``'s default method (``method=None``) takes: "cn" for one wall, as
+#: before; with a yield wall "auto" ("analytic" for a constant sigma_y without a detachment
+#: wall, else "strip"), or "strip" itself where ``level`` or ``kinks`` ask for a grid method
+DEFAULT_DIFFUSION_METHOD = "cn"
+
+
+def _default_diffusion_method(sigma_y, level, kinks) -> str:
+    if sigma_y is None:
+        return DEFAULT_DIFFUSION_METHOD
+    return "strip" if (level is not None or kinks is not None) else "auto"
+
+
+def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, method=None,
                     rtol=1e-6, n_damp=None, parallel=None, level=None) -> DiffusionResult:
     """Solve the stress diffusion with a prescribed absorbing wall.
 
@@ -136,11 +148,15 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         adaptive sampling (which puts a sample next to them, within ~1e-3 of the tolerance).
         A callable that jumps is refused (give such a wall as samples with a repeated G).
         [Pa^2]
-    method : str
-        A name in :data:`persson_fast.METHODS`: "cn" (default), "cn-plain",
-        "implicit-euler", "fixed-grid", "bnr", "analytic" (a wall linear in G, zero
-        included) or "auto" (the cheapest that meets rtol, see ``AUTO_POLICY``). A method
-        that cannot serve the wall (jumps, non-linear) raises a ValueError.
+    method : str or None
+        A name in :data:`persson_fast.METHODS`: "cn", "cn-plain", "implicit-euler",
+        "fixed-grid", "bnr", "analytic" (a wall linear in G, zero included), "strip" (two
+        walls) or "auto" (the cheapest that meets rtol, see ``AUTO_POLICY``). None (default)
+        serves every wall it is given: "cn" with one wall (as ``method="cn"``, bitwise), and
+        with ``sigma_y`` "auto" ("analytic" for a constant sigma_y without a detachment
+        wall, "strip" otherwise; "strip" where ``level`` or ``kinks`` is given). A method
+        named explicitly that cannot serve the walls (jumps, non-linear, a yield wall)
+        raises a ValueError.
     rtol : float
         Target relative accuracy of the area, in [1e-12, 0.1]. [-]
     level : int or None
@@ -180,7 +196,14 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
     says so. ``timings["sample_wall"]`` is the sampling time; ``sigma_a`` of the result is
     the callable at G.
     """
+    if method is None:
+        method = _default_diffusion_method(sigma_y, level, kinks)
     method = check_method(method)
+    if sigma_y is not None and method not in YIELD_METHODS:
+        raise ValueError(f"method {method!r} cannot carry a yield wall (sigma_y): the methods "
+                         f"that can are {', '.join(repr(m) for m in YIELD_METHODS)}; leave "
+                         f"method out (the default serves every wall: 'auto' with sigma_y) or "
+                         f"name one of them; got method = {method!r} with a yield wall")
     check_parallel(parallel)
     rtol = _check_rtol(rtol)
     G = as_float_array(G, "G", "Pa^2", ndim=(1,))

@@ -13,6 +13,8 @@ import pytest
 
 import persson_fast as pf
 from persson_fast import embed
+from tolerances import ATOL, RTOL
+
 from persson_fast._kernels.status import (BAD_INPUT, BAD_LAW, BAD_PRESSURE, BAD_SEPARATION,
                                           OK, SEPARATION_UNDERFLOW, STATUS_MESSAGES)
 
@@ -415,3 +417,39 @@ def test_adhesion_controls_refused_clearly(controls, match):
                          adhesion_controls=controls)
     with pytest.raises(ValueError, match=match):
         pf.pull_off(_SA, e_star=1e9, work_of_adhesion=0.05, rtol=1e-3, controls=controls)
+
+
+# ---------------------------------------------------------------------------------------------
+# item 14: the default method of solve_diffusion serves every wall
+# ---------------------------------------------------------------------------------------------
+_G = np.r_[0.0, np.geomspace(1e9, 1e13, 30)]
+
+
+def test_default_method_serves_a_yield_wall():
+    p = np.array([1e5, 1e6])
+    d = pf.solve_diffusion(_G, p, sigma_y=3e6)
+    ref = pf.solve_diffusion(_G, p, sigma_y=3e6, method="auto")
+    assert d.success and d.method == ref.method == "analytic"
+    np.testing.assert_array_equal(d.area, ref.area)
+    np.testing.assert_array_equal(d.plastic_area, ref.plastic_area)
+    # with a detachment wall too: the two-wall solver, within rtol of its own tighter run
+    d2 = pf.solve_diffusion(_G, p, 2e5, sigma_y=3e6, rtol=RTOL)
+    assert d2.success and d2.method == "strip"
+    tight = pf.solve_diffusion(_G, p, 2e5, sigma_y=3e6, method="strip", rtol=1e-10)
+    real, real_tight = d2.area + d2.plastic_area, tight.area + tight.plastic_area
+    assert np.all(np.abs(real - real_tight) <= RTOL * real_tight + ATOL)
+    # level asks for a grid method: the default takes "strip" then
+    assert pf.solve_diffusion(_G, p, sigma_y=3e6, level=1).method == "strip"
+
+
+def test_default_method_is_cn_for_one_wall_and_explicit_cn_refuses_a_yield_wall():
+    p = np.array([1e5, 1e6])
+    sa = 1e4 + 1e-9 * _G
+    d = pf.solve_diffusion(_G, p, sa)
+    cn = pf.solve_diffusion(_G, p, sa, method="cn")
+    assert d.method == "cn"
+    np.testing.assert_array_equal(d.area, cn.area)
+    np.testing.assert_array_equal(d.error_estimate, cn.error_estimate)
+    with pytest.raises(ValueError, match=r"method 'cn' cannot carry a yield wall \(sigma_y\).*"
+                                         r"leave method out"):
+        pf.solve_diffusion(_G, p, sigma_y=3e6, method="cn")
