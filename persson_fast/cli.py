@@ -425,10 +425,11 @@ def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if not argv or (argv[0].startswith("-") and argv[0] not in ("-h", "--help", "--version")):
         argv = ["figure2", *argv]
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    handler = {"figure2": _cmd_figure2, "contact": _cmd_contact, "info": _cmd_info}[args.command]
     try:
+        parser = build_parser()
+        args = parser.parse_args(argv)
+        handler = {"figure2": _cmd_figure2, "contact": _cmd_contact,
+                   "info": _cmd_info}[args.command]
         return int(handler(args) or 0)
     except ValueError as exc:  # the package's (and this module's) invalid-input errors
         print(f"error: {exc}", file=sys.stderr)
@@ -460,11 +461,23 @@ def run() -> None:
     shutdown 0.3 s (about 170 000 objects, most of them numba's). The atexit handlers run
     and files are flushed and closed as usual; the operating system frees the memory.
     (Called in-process, :func:`main` leaves the collector alone.)
+
+    A Ctrl-C outside :func:`main`'s own handling (here, or at exit) is answered as main
+    answers it: "interrupted", exit code 130. The console script reaches this function
+    through the module ``_persson_fast_cli``, which gives the same answer to a Ctrl-C
+    while the package is still being imported (before any code here exists).
     """
-    gc.freeze()
-    gc.set_threshold(RUN_GC_THRESHOLD)
-    code = main()
-    gc.freeze()
+    try:
+        gc.freeze()
+        gc.set_threshold(RUN_GC_THRESHOLD)
+        code = main()
+        gc.freeze()
+    except KeyboardInterrupt:
+        import signal
+
+        signal.signal(signal.SIGINT, signal.SIG_IGN)      # exiting: a second Ctrl-C ignored
+        print("interrupted", file=sys.stderr)
+        code = 130
     raise SystemExit(code)
 
 

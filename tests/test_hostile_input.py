@@ -453,3 +453,74 @@ def test_default_method_is_cn_for_one_wall_and_explicit_cn_refuses_a_yield_wall(
     with pytest.raises(ValueError, match=r"method 'cn' cannot carry a yield wall \(sigma_y\).*"
                                          r"leave method out"):
         pf.solve_diffusion(_G, p, sigma_y=3e6, method="cn")
+
+
+# ---------------------------------------------------------------------------------------------
+# item 15: Ctrl-C at any moment of the console script
+# ---------------------------------------------------------------------------------------------
+_ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
+
+#: the console script's own lines (what pip writes for the entry point), run in a child that
+#: raises SIGINT when the module IMPORT_AT is imported (during the package's import)
+_CHILD = """
+import signal, sys
+class _Interrupt:
+    def find_spec(self, name, path=None, target=None):
+        if name == {at!r}:
+            {action}
+        return None
+sys.meta_path.insert(0, _Interrupt())
+sys.argv = ["persson-fast", "figure2", "--points", "3", "--no-plot", "--out", {out!r}]
+from _persson_fast_cli import run
+sys.exit(run())
+"""
+
+
+def _console_child(tmp_path, at, action):
+    import subprocess
+    import sys
+
+    code = _CHILD.format(at=at, action=action, out=str(tmp_path / "out"))
+    return subprocess.Popen([sys.executable, "-c", code], cwd=_ROOT, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def test_console_script_is_the_launcher_module():
+    import tomllib
+
+    scripts = tomllib.loads((_ROOT / "pyproject.toml").read_text())["project"]["scripts"]
+    assert scripts["persson-fast"] == "_persson_fast_cli:run"
+
+
+@pytest.mark.parametrize("at", ["numpy", "numba", "persson_fast.api", "persson_fast.cli"])
+def test_ctrl_c_while_the_package_imports_exits_130_without_traceback(tmp_path, at):
+    proc = _console_child(tmp_path, at, "signal.raise_signal(signal.SIGINT)")
+    out, err = proc.communicate(timeout=300)
+    assert proc.returncode == 130, (at, err)
+    assert err == "interrupted\n" and "Traceback" not in err
+    assert not (tmp_path / "out").exists()
+
+
+def test_ctrl_c_sent_from_outside_early_exits_130_without_traceback(tmp_path):
+    """A real SIGINT from another process, sent as soon as the package starts importing."""
+    import os
+    import signal
+
+    proc = _console_child(tmp_path, "persson_fast",
+                          "print('importing', flush=True); sys.meta_path.pop(0)")
+    assert proc.stdout.readline() == "importing\n"
+    os.kill(proc.pid, signal.SIGINT)
+    out, err = proc.communicate(timeout=300)
+    assert proc.returncode == 130, err
+    assert err == "interrupted\n"
+
+
+def test_ctrl_c_while_parsing_is_answered_by_main(monkeypatch, capsys):
+    from persson_fast import cli
+
+    def interrupted():
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(cli, "build_parser", interrupted)
+    assert cli.main(["info"]) == 130
+    assert capsys.readouterr().err == "interrupted\n"
