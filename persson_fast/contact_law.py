@@ -12,8 +12,11 @@ Every compiled function checks the table it is given before it reads it (the rul
 :func:`persson_fast._kernels.contact_law.law_status`: five arrays of one length, ln u
 increasing, ln p decreasing, finite, every interval monotone): a table that is not one this
 module builds gives NaN and status ``BAD_LAW`` (21), never a number. The check is one pass
-over the nodes, so a call costs O(n) (a few hundred nodes at rtol 1e-6 to 1e-8, 1,700 at
-1e-10); :func:`persson_fast.embed.law_sweep` evaluates many separations with one check.
+over the nodes, so a call costs O(n) (184 nodes at rtol 1e-6 and 610 at 1e-8 on the
+self-affine scene of ``benchmarks/bench_separation.py``, ~1,700 at 1e-10): there a call took
+4-5x (rtol 1e-6) and 8x (1e-8) the time of the look-up alone (``test_law_call``, the
+previous and this version side by side on one 2-core machine).
+:func:`persson_fast.embed.law_sweep` evaluates many separations with one check.
 
 Interpolation: ln p and ln K as cubic Hermite polynomials of v = ln u between nodes, with
 the exact slopes d ln p/dv = -u K/p and d ln K/dv = (1 - d ln Q/d ln p) d ln p/dv (Q = p/K,
