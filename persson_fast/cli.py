@@ -3,9 +3,9 @@
 Subcommands
 -----------
 figure2
-    The seed paper's PMMA scene: A/A0 against the nominal pressure 0-100 MPa,
-    without adhesion and, once adhesion is available, with Delta gamma = 0.06 J/m^2. Writes a CSV
-    file and a PNG plot.
+    The seed paper's PMMA scene: A/A0 against the nominal pressure 0-100 MPa, without
+    adhesion and with Delta gamma = 0.06 J/m^2, and the pull-off stress. Writes a CSV file
+    and a PNG plot.
 contact
     A user's own scene (capillary waves, a self-affine spectrum, a measured height map or line
     scan, or a spectrum file) from flags and/or a TOML file.
@@ -53,8 +53,9 @@ pull_off_stress_Pa
 
 ``contact --csv FILE`` writes pressure_Pa, area, force_per_contact_area_Pa,
 compression_per_contact_area_Pa (the same quantities for the chosen scene, equal without
-adhesion), status (0 ok, else the package's status code) and, with ``--pull-off``,
-pull_off_stress_Pa.
+adhesion), status (0 ok, else the package's status code), then with ``--hardness``
+elastic_area and plastic_area, with ``--separation`` separation_m, stiffness_Pa_per_m and
+elastic_energy_J_per_m2, and with ``--pull-off`` pull_off_stress_Pa.
 
 This module holds the subcommands and :func:`main`; the parser is in
 :mod:`persson_fast.cli_parser`, the settings of ``contact`` (TOML file and flags) in
