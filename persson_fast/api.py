@@ -61,8 +61,8 @@ def warmup(prange: bool = False) -> dict:
     Returns
     -------
     dict
-        Seconds spent per part (the sweeps of every method, ``adhesion``, ``separation``,
-        ``strip``, ``adhesion_yield``). [s]
+        Seconds spent per part: ``serial`` (the sweep kernels), ``prange`` (with
+        ``prange=True``), ``adhesion``, ``separation``, ``strip``, ``adhesion_yield``. [s]
     """
     # on a cold cache the adhesive fixed point compiles in a second process meanwhile
     with compiling_beside(ADHESIVE_JOBS):
