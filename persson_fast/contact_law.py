@@ -243,7 +243,7 @@ def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
     Parameters
     ----------
     surface : Surface or Scene
-        The roughness, or a Scene without adhesion.
+        The roughness, or a Scene without adhesion and without a hardness.
     e_star : float
         Effective modulus E* > 0 (with a surface). [Pa]
     energy_correction : float or None

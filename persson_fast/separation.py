@@ -434,7 +434,7 @@ def decay_length(surface: Surface | Scene, *, e_star: float | None = None,
     Parameters
     ----------
     surface : Surface or Scene
-        The roughness, or a Scene without adhesion.
+        The roughness, or a Scene without adhesion and without a hardness.
     e_star : float
         Effective modulus E* > 0 (with a surface). [Pa]
     energy_correction : float or None
@@ -459,7 +459,8 @@ def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
     Parameters
     ----------
     surface : Surface or Scene
-        The roughness, or a :class:`~persson_fast.Scene` without adhesion.
+        The roughness, or a :class:`~persson_fast.Scene` without adhesion and without
+        a hardness.
     pressure : float or array_like, shape (n_p,)
         Nominal pressures, > 0 and finite. [Pa]
     e_star : float
@@ -478,7 +479,7 @@ def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
     Closed form of the module docstring (Persson, PRL 99, 125502 (2007); Yang & Persson,
     J. Phys.: Condens. Matter 20, 215214 (2008)); no diffusion solve. Relative accuracy
     ~1e-12 (measured, see the module docstring), whatever a solver's rtol. A scene with
-    adhesion raises a ValueError (not derived here).
+    adhesion or a yield wall raises a ValueError (not derived here).
     """
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "solve_separation")
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1)).reshape(-1)
@@ -526,7 +527,7 @@ def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
     Parameters
     ----------
     surface : Surface or Scene
-        The roughness, or a Scene without adhesion.
+        The roughness, or a Scene without adhesion and without a hardness.
     separation : float or array_like
         Mean interfacial separation u > 0, finite. [m]
     e_star : float
