@@ -210,3 +210,17 @@ def test_public_function_parameters_have_type_hints(name, func):
 
 def test_package_is_typed():
     assert (ROOT / "persson_fast" / "py.typed").exists()
+
+
+def test_release_files_agree_with_the_version():
+    """The version is written in persson_fast/_version.py; CITATION.cff and CHANGELOG.md
+    name the same one, and pyproject.toml reads it from there."""
+    citation = (ROOT / "CITATION.cff").read_text(encoding="utf-8")
+    assert re.search(r"^cff-version: 1\.2\.0$", citation, flags=re.M)
+    assert re.search(rf"^version: {re.escape(pf.__version__)}$", citation, flags=re.M)
+    changelog = (ROOT / "CHANGELOG.md").read_text(encoding="utf-8")
+    assert f"## [{pf.__version__}]" in changelog
+    pyproject = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
+    assert 'dynamic = ["version"]' in pyproject
+    assert 'attr = "persson_fast._version.__version__"' in pyproject
+    assert (ROOT / "LICENSE").read_text(encoding="utf-8").startswith("MIT License")
