@@ -76,6 +76,8 @@ nb_execution_timeout = 300          # per cell [s]; the tests hold each notebook
 nb_execution_raise_on_error = True  # a failing cell fails the build
 nb_execution_show_tb = True
 nb_merge_streams = True
+# Markdown that a cell displays (the status table) is parsed as MyST, tables included
+nb_render_markdown_format = "myst"
 nb_execution_excludepatterns: list[str] = []
 
 # --- HTML -----------------------------------------------------------------------------------
