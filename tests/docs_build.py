@@ -75,6 +75,5 @@ def build() -> DocsBuild:
     proc = subprocess.run([sys.executable, "-m", "sphinx", *SPHINX_ARGS, str(DOCS), str(outdir)],
                           cwd=ROOT, env=env, capture_output=True, text=True,
                           timeout=BUILD_TIMEOUT)
-    result = DocsBuild(proc.returncode, proc.stdout + proc.stderr, outdir, _exec_data(outdir),
-                       sorted(_files_under(NOTEBOOK_DIR) - before))
-    return result
+    return DocsBuild(proc.returncode, proc.stdout + proc.stderr, outdir, _exec_data(outdir),
+                     sorted(_files_under(NOTEBOOK_DIR) - before))

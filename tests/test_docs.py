@@ -192,10 +192,8 @@ def _functions():
         if inspect.isclass(obj):
             if issubclass(obj, pf.Surface):
                 for attr, member in vars(obj).items():
-                    if attr == "__init__" or (not attr.startswith("_") and
-                                              isinstance(member, (classmethod, staticmethod))
-                                              or inspect.isfunction(member)
-                                              and not attr.startswith("_")):
+                    method = inspect.isfunction(member) or isinstance(member, classmethod)
+                    if method and (attr == "__init__" or not attr.startswith("_")):
                         yield f"{name}.{attr}", getattr(obj, attr)
             continue
         yield name, getattr(obj, "py_func", obj)      # a numba dispatcher: its Python function
