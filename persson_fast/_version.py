@@ -1,2 +1,2 @@
-"""The package version (one place; ``pyproject.toml`` names the same)."""
+"""The package version: the one place it is written (``pyproject.toml`` reads it from here)."""
 __version__ = "0.1.0"

@@ -7,6 +7,13 @@ image pair's density, shared with the linearly moving wall.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+    
+    from .surface_base import Surface
+
 import numpy as np
 from ._special import erf
 
@@ -24,7 +31,7 @@ __all__ = ["images_area", "images_density", "images_moments", "contact_area_no_a
 # --------------------------------------------------------------------------------------------
 # method of images (sigma_a = 0)
 # --------------------------------------------------------------------------------------------
-def images_area(pressure, G):
+def images_area(pressure: ArrayLike, G: ArrayLike) -> float | np.ndarray:
     """Relative contact area without adhesion, by the method of images.
 
     Parameters
@@ -75,7 +82,8 @@ def _images_area_at(p: np.ndarray, g) -> np.ndarray:
     return images_area(p, g)
 
 
-def images_density(sigma, pressure, G):
+def images_density(sigma: ArrayLike, pressure: ArrayLike,
+                   G: ArrayLike) -> float | np.ndarray:
     """Stress distribution P(sigma, G) without adhesion (method of images).
 
     Parameters
@@ -135,7 +143,7 @@ def _gaussian_times_absorption(sigma, sigma0, G, y, y_lo, y0):
     return out
 
 
-def images_moments(pressure, G):
+def images_moments(pressure: ArrayLike, G: ArrayLike) -> tuple:
     """Zeroth, first and second stress moments of the image solution.
 
     Parameters
@@ -181,7 +189,8 @@ def images_moments(pressure, G):
 # --------------------------------------------------------------------------------------------
 # surface-level convenience
 # --------------------------------------------------------------------------------------------
-def contact_area_no_adhesion(surface, pressure, e_star, zeta=None):
+def contact_area_no_adhesion(surface: Surface, pressure: ArrayLike, e_star: float,
+                             zeta: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
     """A(zeta)/A0 without adhesion for a surface, by the method of images.
 
     Parameters

@@ -8,6 +8,11 @@ relative accuracy also for tiny areas and ``exp(-b y0)`` beyond the float range
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+
 import numpy as np
 from ._special import erfc, erfcx
 
@@ -134,7 +139,8 @@ def _linear_survivor_parts(st: _Drift):
     return first, t2
 
 
-def linear_boundary_area(pressure, G, a, b):
+def linear_boundary_area(pressure: ArrayLike, G: ArrayLike, a: ArrayLike,
+                         b: ArrayLike) -> float | np.ndarray:
     """Contact area for an absorbing wall moving linearly in G, sigma_a(G) = a + b G.
 
     Parameters
@@ -171,7 +177,7 @@ def linear_boundary_area(pressure, G, a, b):
     one remaining near-cancelling difference, erfcx(u-alpha) - erfcx(u+alpha), as the integral
     of its (positive) derivative by 24-point Gauss-Legendre; the Gaussian factor exp(-(alpha+c)^2)
     takes its exponent (y0 + bG)^2/4G in double-double.  Measured against mpmath: relative error
-    < 2e-15 for y0/sqrt(G) in [1e-8, 1e3], |b| sqrt(G) <= 50, sqrt(G) from 1 Pa to 1e9 Pa.
+    < 2e-15 for y0/sqrt(G) in [1e-8, 1e3], abs(b) sqrt(G) <= 50, sqrt(G) from 1 Pa to 1e9 Pa.
     """
     shape, (p, g, a_, b_), y0 = _linear_inputs(pressure, G, a, b)
     out = np.where(y0 > 0, 1.0, 0.0)
@@ -180,7 +186,8 @@ def linear_boundary_area(pressure, G, a, b):
     return _result(out, shape)
 
 
-def linear_boundary_detachment_rate(pressure, G, a, b):
+def linear_boundary_detachment_rate(pressure: ArrayLike, G: ArrayLike, a: ArrayLike,
+                                    b: ArrayLike) -> float | np.ndarray:
     """Detachment rate g = -d(A/A0)/dG for the linearly moving wall sigma_a = a + b G.
 
     Parameters
@@ -220,7 +227,8 @@ def linear_boundary_detachment_rate(pressure, G, a, b):
     return _result(out, shape)
 
 
-def linear_boundary_density(sigma, pressure, G, a, b):
+def linear_boundary_density(sigma: ArrayLike, pressure: ArrayLike, G: ArrayLike,
+                            a: ArrayLike, b: ArrayLike) -> float | np.ndarray:
     """Stress distribution P(sigma, G) for the linearly moving wall sigma_a = a + b G.
 
     Parameters
@@ -270,7 +278,8 @@ def linear_boundary_density(sigma, pressure, G, a, b):
     return _result(_gaussian_times_absorption(s, p, g, y, y_lo, y0), shape)
 
 
-def linear_boundary_load(pressure, G, a, b):
+def linear_boundary_load(pressure: ArrayLike, G: ArrayLike, a: ArrayLike,
+                         b: ArrayLike) -> float | np.ndarray:
     """Load carried by the contact, integral of sigma P over sigma >= -sigma_a(G), for sigma_a = a + bG.
 
     Parameters
@@ -304,9 +313,9 @@ def linear_boundary_load(pressure, G, a, b):
     cancel exactly (exp(-b y0) phi(m'/sqrt v) = phi(m/sqrt v)).  That is bG A + y0 B; subtracting
     sigma_a A = (a + bG) A gives L = y0 B - a A.  It satisfies the load bookkeeping of the adhesive model (detachment at -sigma_a),
     L(G) = sigma0 + integral_0^G sigma_a(G') g(G') dG'.  B - A = exp(-4 alpha c) erfc(alpha - c)
-    >= 0, so the form sigma0 B + a (B - A) (a >= 0) or y0 B + |a| A (a < 0) is a sum of
+    >= 0, so the form sigma0 B + a (B - A) (a >= 0) or y0 B + abs(a) A (a < 0) is a sum of
     non-negative terms whenever sigma0 >= 0 or a < 0; only for a tensile start (sigma0 < 0 < a),
-    where L itself may cross zero, is the accuracy absolute (relative to |sigma0| B + a (B - A)).
+    where L itself may cross zero, is the accuracy absolute (relative to abs(sigma0) B + a (B - A)).
     """
     shape, (p, g, a_, b_), y0 = _linear_inputs(pressure, G, a, b)
     out = np.where(y0 > 0, p, 0.0)

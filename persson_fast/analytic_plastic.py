@@ -6,6 +6,11 @@ Poisson-dual image (short-time) series where that converges faster.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+
 import numbers
 
 import numpy as np
@@ -71,7 +76,8 @@ def _plastic_images(s, s_comp, gs):
     return np.clip(elastic, 0.0, 1.0), np.clip(plastic, 0.0, 1.0)
 
 
-def plastic_area(pressure, G, yield_stress, n_terms=None):
+def plastic_area(pressure: ArrayLike, G: ArrayLike, yield_stress: ArrayLike,
+                 n_terms: int | None = None) -> tuple:
     """Elastic and plastic contact-area fractions for a constant yield stress (no adhesion).
 
     Parameters

@@ -1,6 +1,16 @@
 """Public entry points: validate, pick a method, call the sweep, wrap the result."""
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from collections.abc import Callable
+    
+    from numpy.typing import ArrayLike
+    
+    from .scene import Scene
+    from .surface_base import Surface
+
 import functools
 import time
 from dataclasses import replace
@@ -37,12 +47,22 @@ __all__ = ["solve_diffusion", "solve_contact", "default_zeta", "warmup"]
 
 
 def warmup(prange: bool = False) -> dict:
-    """Compile (or load from the disk cache) the sweep kernels now; return the seconds spent.
+    """Compile (or load from the disk cache) the kernels now; return the seconds spent.
 
     The serial kernels (which the default thread pool also runs) are cached on disk: the first
-    call on a machine compiles them, later processes load them. ``prange=True`` also compiles
-    numba's ``prange`` sweeps (only used with ``parallel="prange"``; not cached on disk, so
-    compiled once per process).
+    call on a machine compiles them, later processes load them.
+
+    Parameters
+    ----------
+    prange : bool
+        Also compile numba's ``prange`` sweeps (only used with ``parallel="prange"``; not
+        cached on disk, so compiled once per process).
+
+    Returns
+    -------
+    dict
+        Seconds spent per part: ``serial`` (the sweep kernels), ``prange`` (with
+        ``prange=True``), ``adhesion``, ``separation``, ``strip``, ``adhesion_yield``. [s]
     """
     # on a cold cache the adhesive fixed point compiles in a second process meanwhile
     with compiling_beside(ADHESIVE_JOBS):
@@ -112,8 +132,12 @@ def _default_diffusion_method(sigma_y, level, kinks) -> str:
     return "strip" if (level is not None or kinks is not None) else "auto"
 
 
-def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, method=None,
-                    rtol=1e-6, n_damp=None, parallel=None, level=None) -> DiffusionResult:
+def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
+                    sigma_a: ArrayLike | Callable[[np.ndarray], np.ndarray] = 0.0, *,
+                    sigma_y: ArrayLike | Callable[[np.ndarray], np.ndarray] | None = None,
+                    kinks: ArrayLike | None = None, method: str | None = None, rtol: float = 1e-6,
+                    n_damp: int | None = None, parallel: bool | str | None = None,
+                    level: int | None = None) -> DiffusionResult:
     """Solve the stress diffusion with a prescribed absorbing wall.
 
     Parameters
@@ -130,7 +154,7 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         (its error against a curve they were taken from is not part of rtol). A vectorised
         callable ``G [Pa^2] -> sigma_a [Pa]`` (one wall for every pressure; called on arrays,
         must return finite values of the same shape on [0, G[-1]]) is followed from G = 0 and
-        sampled by :func:`persson_fast.walls.sample_wall` finely enough that its
+        sampled (``persson_fast.walls.sample_wall``) finely enough that its
         piecewise-linear error is part of rtol; results are still reported at G only. [Pa]
     sigma_y : float, array_like, callable or None
         The yield wall (penetration hardness) at +sigma_y: what crosses it has yielded and
@@ -138,7 +162,7 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
         elastic area between the walls). Forms as ``sigma_a``: a scalar, (n_t,) or (n_p, n_t)
         samples (continuous: no jumps), or a vectorised callable G -> sigma_y. A constant
         sigma_y with sigma_a = 0 is the exact series (method "analytic"; "auto" takes it);
-        every other pair of walls is solved by "strip" (see :mod:`persson_fast.strip`;
+        every other pair of walls is solved by "strip" (see ``persson_fast.strip``;
         "auto" takes it), with rtol and ``error_estimate`` referring to the real contact
         area area + plastic_area. The walls must keep -sigma_a < sigma_y and start with
         -sigma_a < pressure < sigma_y. None (default): no yield wall. [Pa]
@@ -179,12 +203,12 @@ def solve_diffusion(G, pressure, sigma_a=0.0, *, sigma_y=None, kinks=None, metho
     -----
     dP/dG = d2P/dsigma2 with P(sigma, 0) = delta(sigma - sigma0) and P(-sigma_a, G) = 0
     (seed Eqs. 4, 7 in diffusion time G). The "cn" scheme is described in
-    :mod:`persson_fast._kernels.similarity`; its order after extrapolation is 4 for smooth
+    ``persson_fast._kernels.similarity``; its order after extrapolation is 4 for smooth
     walls.
 
     A callable wall is sampled on 0, G, ``kinks`` and adaptively inserted points until its
-    chord deviates from it by at most WALL_BUDGET * rtol * min(sqrt(2G), 1/|v|)
-    * exp(gap^2/4G) / L (module :mod:`persson_fast.walls`: a comparison-principle bound on
+    chord deviates from it by at most WALL_BUDGET * rtol * min(sqrt(2G), 1/abs(v))
+    * exp(gap^2/4G) / L (module ``persson_fast.walls``: a comparison-principle bound on
     the area error, v = dsigma_a/dG where the wall moves into the distribution, gap the
     distance sigma0 + sigma_a(G) of the smallest pressure in contact, L the e-folds of G in
     which the wall meets the distribution); the deviation falls as (spacing)^2, so smooth
@@ -441,10 +465,15 @@ def _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction, b
     return _flag_unconfirmed_separation(res, "pull_off has no yield wall")
 
 
-def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
-                  detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None,
-                  parallel=None, adhesion_controls=None, theory="persson01",
-                  theory_gamma=None, hardness=None) -> ContactResult:
+def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
+                  e_star: float | None = None, work_of_adhesion: float = 0.0,
+                  energy_correction: float | None = None,
+                  detachment_prefactor: float = DETACHMENT_PREFACTOR, method: str = "auto",
+                  rtol: float = 1e-6, zeta: ArrayLike | None = None,
+                  parallel: bool | str | None = None, adhesion_controls: dict | None = None,
+                  theory: str = "persson01", theory_gamma: float | None = None,
+                  hardness: float | Callable[[np.ndarray], np.ndarray] | ArrayLike | None = None,
+                  ) -> ContactResult:
     """Relative real contact area of a rough surface at many nominal pressures.
 
     Parameters
@@ -465,15 +494,18 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     work_of_adhesion : float
         Delta gamma >= 0. [J/m^2]  (0: no adhesion.)
     energy_correction : float or None
-        gamma_S of S = gamma_S + (1 - gamma_S) P(q)^2 (adhesion only); None: S = 1.
+        gamma_S of S = gamma_S + (1 - gamma_S) P(q)^2 in the elastic energy U_el, in [0, 1];
+        None: S = 1. It enters the adhesive fixed point and the separation
+        (``result.separation``), not the area without adhesion. [-]
     detachment_prefactor : float
         beta of seed Eq. 8 (default 1/sqrt 2). [-]
     method : str
-        A name in :data:`persson_fast.METHODS`; "auto" (default) takes the closed form
-        without adhesion and the cheapest measured grid method with it. The method used is
-        ``result.method``.
+        A name in :data:`persson_fast.METHODS`; "auto" (default) takes the closed form where
+        the scene has one (no adhesion: without a hardness, or with a constant one) and
+        otherwise the cheapest measured grid method ("cn" with adhesion, "strip" with a
+        yield wall). The method used is ``result.method``.
     rtol : float
-        Target relative accuracy of the area. [-]
+        Target relative accuracy of the area, in [1e-12, 0.1]. [-]
     zeta : array_like or None
         Magnifications of the returned profiles (with adhesion also the grid of the fixed
         point, which sets its accuracy): increasing, from 1 to zeta1 = q1/q0. It must end
@@ -487,22 +519,22 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         for >= 4 pressures, running the disk-cached serial kernels (nothing extra to
         compile; results bitwise those of False); True or "threads": the pool always;
         "prange": numba's prange sweeps (compiled once per process, not cached); False: one
-        thread. See :func:`persson_fast.sweep.choose_parallel`.
+        thread.
     adhesion_controls : dict or None
         Fixed-point controls: ``max_iter`` (100), ``m_hist`` (Anderson depth, 5; 0 = plain
         relaxation), ``omega`` (relaxation, 1.0; in tension at most 0.5), ``n_damp`` (2).
     theory : str
         The area theory: "persson01" (default, the original; this path is unchanged by the
         option), or a corrected one, "yp08" (Yang & Persson 2008), "wm17" (Wang & Mueser
-        2017), "xu24" (Xu et al. 2024), see :mod:`persson_fast.theories`. Without adhesion
+        2017), "xu24" (Xu et al. 2024), see ``persson_fast.theories``. Without walls
         the corrected theories are a near-closed form (``method`` "auto" or "analytic";
-        relative accuracy ~1e-12 whatever ``rtol``). With adhesion, yp08 and wm17 are the
-        corrected diffusion dT/dG = S(A) solved together with the detachment stress
-        (error-controlled to ``rtol`` like the original; ``result.G`` stays the original
-        G); separated tensions then come back flagged (status 9), since ``pull_off``
-        follows the original theory only; xu24 (full magnification, no walls) and the
-        corrected theories with ``hardness`` raise a ValueError. ``result.theory`` records
-        the theory.
+        relative accuracy ~1e-12 whatever ``rtol``). With adhesion, a yield wall
+        (``hardness``) or both, yp08 and wm17 are the corrected diffusion dT/dG = S(A)
+        solved together with the walls (error-controlled to ``rtol`` like the original;
+        ``result.G`` stays the original G); with adhesion, separated tensions then come
+        back flagged (status 9), since ``pull_off`` follows the original theory only. xu24
+        (an algebraic relation at full magnification) raises a ValueError with adhesion or
+        a hardness. ``result.theory`` records the theory.
     theory_gamma : float or None
         gamma of the corrected theory; None (default) takes its published default (0.42
         for yp08 and xu24, 5/9 for wm17), which ``result.theory_gamma`` records. Range
@@ -514,12 +546,14 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
         between its points, which must span the zeta range). Then ``result.area`` is the
         real contact area A_el + A_pl (elastic plus yielded, both in contact),
         ``result.elastic_area`` and ``result.plastic_area`` the two parts (and
-        ``plastic_area_zeta`` its profile). A constant one is the exact two-wall series
-        (method "auto" or "analytic", error 0); a scale-dependent one (or method="strip")
-        the two-wall solver on the wall sigma_Y(zeta(G)), error-controlled to rtol in the
-        real area (:mod:`persson_fast.plasticity`, :mod:`persson_fast.strip`). Scenes without
-        adhesion (hardness with adhesion raises a ValueError that says why); nominal
-        pressures below sigma_Y(1). None (default): elastic, bitwise as before.
+        ``plastic_area_zeta`` its profile). Without adhesion, a constant one is the exact
+        two-wall series (method "auto" or "analytic", error 0); a scale-dependent one (or
+        method="strip") the two-wall solver on the wall sigma_Y(zeta(G)), error-controlled
+        to rtol in the real area (``persson_fast.plasticity``, ``persson_fast.strip``).
+        With adhesion (or a corrected theory) the fixed point runs around the two-wall
+        solver ("strip"), with ``result.plastic_load`` the load of the yielded area.
+        Nominal pressures must lie below sigma_Y(1) (a ValueError otherwise). None
+        (default): elastic, bitwise as before.
 
     Returns
     -------
@@ -528,11 +562,11 @@ def solve_contact(surface, pressure, *, e_star=None, work_of_adhesion=0.0, energ
     Notes
     -----
     With adhesion the detachment stress is the fixed point of seed Eqs. 8-9, solved per
-    pressure in compiled code (see :mod:`persson_fast.adhesion`); nominal tension (p < 0) is
+    pressure in compiled code (see ``persson_fast.adhesion``); nominal tension (p < 0) is
     allowed, and below the pull-off stress the area is 0. A tension that ends separated
     although :func:`pull_off` finds contact there (the fixed point on the zeta grid lost the
     end of the contact branch), or cannot exclude it within its error estimate, gets
-    status 9. The default zeta grid is then :func:`persson_fast.adhesion.adhesion_zeta`
+    status 9. The default zeta grid is then :func:`persson_fast.adhesion_zeta`
     (finer, and refined near zeta = 1).
     Without adhesion the whole surface enters through G(zeta) (seed Eqs. 4-7); the area is
     erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the

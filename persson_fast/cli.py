@@ -3,9 +3,9 @@
 Subcommands
 -----------
 figure2
-    The seed paper's PMMA scene: A/A0 against the nominal pressure 0-100 MPa,
-    without adhesion and, once adhesion is available, with Delta gamma = 0.06 J/m^2. Writes a CSV
-    file and a PNG plot.
+    The seed paper's PMMA scene: A/A0 against the nominal pressure 0-100 MPa, without
+    adhesion and with Delta gamma = 0.06 J/m^2, and the pull-off stress. Writes a CSV file
+    and a PNG plot.
 contact
     A user's own scene (capillary waves, a self-affine spectrum, a measured height map or line
     scan, or a spectrum file) from flags and/or a TOML file.
@@ -54,11 +54,13 @@ pull_off_stress_Pa
 ``contact --csv FILE`` writes pressure_Pa, area, force_per_contact_area_Pa,
 compression_per_contact_area_Pa (the same quantities for the chosen scene, equal without
 adhesion), status (0 ok, else the package's status code: the area's, or where that is 0 and
-``--separation`` is given, the separation's, e.g. 22 for a u that underflowed) and, with
-``--pull-off``, pull_off_stress_Pa (0 without adhesion). ``--pull-off`` is refused (exit
-code 2) with a corrected theory (``--theory`` other than persson01) or a yield wall
-(``--hardness``): their pull-off stress is not yet available, and the original theory's
-elastic one beside their areas would be another scene's number.
+``--separation`` is given, the separation's, e.g. 22 for a u that underflowed), then with
+``--hardness`` elastic_area and plastic_area, with ``--separation`` separation_m,
+stiffness_Pa_per_m and elastic_energy_J_per_m2, and with ``--pull-off`` pull_off_stress_Pa
+(0 without adhesion). ``--pull-off`` is refused (exit code 2) with a corrected theory
+(``--theory`` other than persson01) or a yield wall (``--hardness``): their pull-off stress
+is not yet available, and the original theory's elastic one beside their areas would be
+another scene's number.
 
 This module holds the subcommands and :func:`main`; the parser is in
 :mod:`persson_fast.cli_parser`, the settings of ``contact`` (TOML file and flags) in

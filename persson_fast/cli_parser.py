@@ -97,20 +97,26 @@ def build_parser() -> argparse.ArgumentParser:
     f2.add_argument("--no-plot", action="store_true", help="do not write figure2.png")
     f2.add_argument("--check", action="store_true",
                     help="also solve the scene without adhesion with the grid solver 'cn' and "
-                         "print its largest difference from the closed form (compiles the "
-                         "grid solver: about 8 s more on a cold cache)")
+                         "print its largest difference from the closed form (on a cold "
+                         "numba cache this compiles the grid solver first)")
 
     ct = sub.add_parser(
         "contact", help="contact area of your own scene",
-        description="Relative contact area of a capillary-wave or self-affine surface. A TOML "
-                    "file (--config) may give the same settings; flags override it.",
+        description="Relative real contact area of a rough surface: a model (--surface), a "
+                    "measured height map (--topography) or a spectrum file (--psd), with "
+                    "adhesion, a yield wall (--hardness) and the corrected area theories "
+                    "(--theory) as options, alone or together (xu24 takes neither adhesion "
+                    "nor a hardness). A TOML file (--config) may give the same settings; "
+                    "flags override it.",
     )
     ct.add_argument("--config", metavar="FILE.toml",
                     help="TOML file: a [surface] table with model = "
                          + " | ".join(f"'{name}'" for name in SURFACE_MODELS)
                          + " and its parameters" + _path_keys_text()
                          + "; top-level e_star, pressures (or pressure_range = "
-                         "[pmin, pmax, n]), method, rtol, csv")
+                         "[pmin, pmax, n]), method, rtol, csv, work_of_adhesion, "
+                         "energy_correction, detachment_prefactor, pull_off, hardness, "
+                         "hardness_exponent, theory, theory_gamma, separation")
     ct.add_argument("--surface", choices=_surface_choices(), help="surface model")
     _add_surface_flags(ct)
     ct.add_argument("--e-star", type=float, metavar="E", help="effective modulus E/(1-nu^2) [Pa]")
@@ -125,21 +131,22 @@ def build_parser() -> argparse.ArgumentParser:
                    help="also compute the pull-off stress (0 without adhesion); not yet "
                         "available with a corrected --theory or with --hardness")
     ct.add_argument("--hardness", type=float, metavar="SIGMA_Y",
-                    help="penetration hardness [Pa]: the yield wall; adds the elastic and "
-                         "plastic area columns (no adhesion); constant, or at zeta = 1 with "
-                         "--hardness-exponent (in a TOML file also a table: hardness = "
-                         "{zeta = [...], sigma_y = [...]})")
+                    help="penetration hardness [Pa]: the yield wall, with or without "
+                         "adhesion; adds the elastic and plastic area columns; constant, or "
+                         "at zeta = 1 with --hardness-exponent (in a TOML file also a table: "
+                         "hardness = {zeta = [...], sigma_y = [...]})")
     ct.add_argument("--hardness-exponent", type=float, metavar="EXPONENT",
                     help="a scale-dependent hardness SIGMA_Y zeta^EXPONENT (needs --hardness)")
     ct.add_argument("--separation", action="store_true",
                     help="also print (and write to --csv) the mean interfacial separation u "
                          "[m], the contact stiffness K = -dp/du [Pa/m] and the stored elastic "
-                         "energy U_el [J/m^2] (scenes without adhesion; --energy-correction "
-                         "sets S)")
+                         "energy U_el [J/m^2] (elastic scenes without adhesion, the original "
+                         "theory; --energy-correction sets S)")
     g = ct.add_argument_group("area theory")
     g.add_argument("--theory", choices=THEORY_NAMES,
                    help="area theory: persson01 (the original, default) or a corrected one "
-                        "(yp08, wm17 with or without adhesion; xu24 without adhesion)")
+                        "(yp08, wm17 with or without adhesion and hardness; xu24 with "
+                        "neither)")
     g.add_argument("--theory-gamma", type=float, metavar="THEORY_GAMMA",
                    help="the corrected theory's parameter gamma (default: the published one)")
     pr = ct.add_mutually_exclusive_group()

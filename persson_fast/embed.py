@@ -66,8 +66,9 @@ gaps, out_p, out_k, out_status)`` checks it once and evaluates them all; ``law_s
 is the check alone.
 
 A non-zero status is one of :mod:`persson_fast._kernels.status` (``STATUS_MESSAGES`` says
-what it means); check it as you would a result's ``status``. ``adhesive_area`` is the same
-two-grid, Richardson-extrapolated fixed point as :func:`persson_fast.solve_contact`.
+what it means); check it as you would a result's ``status``. ``adhesive_area`` is the fixed
+point of :func:`persson_fast.solve_contact` on two nested grids, Richardson-extrapolated,
+without its a-posteriori error control.
 
 Every entry point checks its arguments first (O(n) reads, no allocation; valid input gives
 bitwise the results of the raw kernels). A bad argument solves nothing: the area is NaN
@@ -103,6 +104,12 @@ The codes are importable as ``persson_fast._kernels.status.BAD_RTOL`` etc. (inte
 your ``@njit`` code can compare with them).
 """
 from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from .scene import Scene
+    from .surface_base import Surface
 
 import math
 
@@ -176,15 +183,39 @@ def _diffusion_args_status(G, sigma_a, sigma0, rtol):
 
 
 @njit_serial
-def diffusion_solve(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load, out_detached_area,
-                    out_detached_load, out_error):
+def diffusion_solve(G: np.ndarray, sigma_a: np.ndarray, sigma0: float, rtol: float,
+                    n_damp: int, out_area: np.ndarray, out_load: np.ndarray,
+                    out_detached_area: np.ndarray, out_detached_load: np.ndarray,
+                    out_error: np.ndarray) -> int:
     """The one-pressure diffusion solve, every output an (n,) array written in place.
 
-    ``diffusion_solve(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load,
-    out_detached_area, out_detached_load, out_error) -> status``: the "cn" kernel
-    :func:`persson_fast._kernels.similarity.solve_one` (outputs as in ``solve_grid``). The
-    arguments are checked first (module table): on a bad one every output is filled with
-    NaN and its code returned.
+    The "cn" kernel (``persson_fast._kernels.similarity.solve_one``) with every output of
+    :func:`persson_fast.solve_diffusion` for one pressure. The arguments are checked first
+    (the table of this module's docstring): on a bad one every output is filled with NaN
+    and its code returned.
+
+    Parameters
+    ----------
+    G : numpy.ndarray, shape (n,)
+        Diffusion times, non-decreasing, G[0] >= 0. [stress^2]
+    sigma_a : numpy.ndarray, shape (n,)
+        The detachment stress at G: the wall sits at -sigma_a, linear between the
+        points. [stress]
+    sigma0 : float
+        Nominal stress (any sign; at or below -sigma_a[0] the area is 0). [stress]
+    rtol : float
+        Target relative accuracy of the area, in [RTOL_MIN, RTOL_MAX]. [-]
+    n_damp : int
+        Implicit-Euler half steps after a wall jump (Rannacher damping), >= 0 (2 is the
+        default of the Python layer). [-]
+    out_area, out_load, out_detached_area, out_detached_load, out_error : numpy.ndarray
+        Outputs of shape (n,), written in place: A(G)/A0, the load in contact, the detached
+        area and load, and the error estimate of the area. [-], [stress], [-], [stress], [-]
+
+    Returns
+    -------
+    int
+        The status (0 ok; see ``STATUS_MESSAGES``).
     """
     s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
     n = G.shape[0]
@@ -204,11 +235,30 @@ def diffusion_solve(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load, out_de
 
 
 @njit_serial
-def diffusion_area(G, sigma_a, sigma0, rtol):
+def diffusion_area(G: np.ndarray, sigma_a: np.ndarray, sigma0: float,
+                   rtol: float) -> tuple[float, int]:
     """(A(G[-1]) / A0, status) of one pressure with the wall at -sigma_a(G).
 
-    G: (n,) non-decreasing, G[0] >= 0; sigma_a: (n,); sigma0, rtol: floats (consistent
-    units: stress and sqrt(G) alike). A bad argument gives (NaN, its code): module table.
+    Any consistent units: stress and sqrt(G) alike (e.g. Pa and Pa^2).
+
+    Parameters
+    ----------
+    G : numpy.ndarray, shape (n,)
+        Diffusion times, non-decreasing, G[0] >= 0. [stress^2]
+    sigma_a : numpy.ndarray, shape (n,)
+        The detachment stress at G, linear between the points (zeros: no adhesion). [stress]
+    sigma0 : float
+        Nominal stress (any sign; at or below -sigma_a[0] the area is 0). [stress]
+    rtol : float
+        Target relative accuracy of the area, in [RTOL_MIN, RTOL_MAX]. [-]
+
+    Returns
+    -------
+    area : float
+        A(G[-1])/A0; NaN for a bad argument. [-]
+    status : int
+        0 ok, else a code of ``STATUS_MESSAGES`` (the argument codes in the table of this
+        module's docstring).
     """
     s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
     if s != _status.OK:
@@ -251,15 +301,37 @@ def _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol):
 
 
 @njit_serial
-def elastoplastic_area(G, sigma_a, sigma_y, sigma0, rtol):
-    """(A_el, A_pl, status) at G[-1] of one pressure between the detachment wall at
-    -sigma_a(G) and the yield wall at sigma_y(G) (the real contact area is A_el + A_pl).
+def elastoplastic_area(G: np.ndarray, sigma_a: np.ndarray, sigma_y: np.ndarray,
+                       sigma0: float, rtol: float) -> tuple[float, float, int]:
+    """(A_el, A_pl, status) at G[-1] of one pressure between two walls.
 
-    G: (n,) non-decreasing, G[0] >= 0; sigma_a, sigma_y: (n,), linear in G between the points,
-    no jumps; sigma0 strictly between the walls at G[0]; rtol: float (consistent units:
-    stress and sqrt(G) alike). The same solver as ``solve_diffusion(..., sigma_y=...,
-    method="strip")`` (error control on A_el + A_pl). A bad argument gives (NaN, NaN, its
-    code): module table.
+    The detachment wall sits at -sigma_a(G), the yield wall at sigma_y(G); the real contact
+    area is A_el + A_pl. The same solver as ``solve_diffusion(..., sigma_y=...,
+    method="strip")``, error-controlled in A_el + A_pl. Any consistent units: stress and
+    sqrt(G) alike.
+
+    Parameters
+    ----------
+    G : numpy.ndarray, shape (n,)
+        Diffusion times, non-decreasing, G[0] >= 0. [stress^2]
+    sigma_a : numpy.ndarray, shape (n,)
+        The detachment stress at G, linear between the points, no jumps. [stress]
+    sigma_y : numpy.ndarray, shape (n,)
+        The yield stress at G, linear between the points, no jumps, with
+        sigma_a + sigma_y > 0. [stress]
+    sigma0 : float
+        Nominal stress, strictly between the walls at G[0]. [stress]
+    rtol : float
+        Target relative accuracy of the real area, in [RTOL_MIN, RTOL_MAX]. [-]
+
+    Returns
+    -------
+    elastic : float
+        A_el(G[-1])/A0; NaN for a bad argument. [-]
+    plastic : float
+        A_pl(G[-1])/A0, the yielded area; NaN for a bad argument. [-]
+    status : int
+        0 ok, else a code of ``STATUS_MESSAGES``.
     """
     s = _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol)
     if s != _status.OK:
@@ -278,15 +350,35 @@ def elastoplastic_area(G, sigma_a, sigma_y, sigma0, rtol):
     return el[n - 1], pl[n - 1], s
 
 
-def adhesive_scene(surface, *, e_star=None, work_of_adhesion=None, energy_correction=None,
-                   detachment_prefactor=DETACHMENT_PREFACTOR, rtol=1e-6):
+def adhesive_scene(surface: Surface | Scene, *, e_star: float | None = None,
+                   work_of_adhesion: float | None = None,
+                   energy_correction: float | None = None,
+                   detachment_prefactor: float = DETACHMENT_PREFACTOR,
+                   rtol: float = 1e-6) -> tuple:
     """The plain-array scene of :func:`adhesive_area` (validated, built once in Python).
 
-    ``surface`` is a Surface (with the keywords) or a :class:`~persson_fast.Scene`.
+    Parameters
+    ----------
+    surface : Surface or Scene
+        The rough surface (with the keywords below), or a :class:`~persson_fast.Scene`
+        with adhesion and without a hardness.
+    e_star : float
+        Effective modulus E* > 0 (with a surface). [Pa]
+    work_of_adhesion : float
+        Delta gamma > 0 (with a surface). [J/m^2]
+    energy_correction : float or None
+        gamma_S of S = gamma_S + (1 - gamma_S) P^2, in [0, 1]; None: S = 1. [-]
+    detachment_prefactor : float
+        beta of seed Eq. 8 (default 1/sqrt 2). [-]
+    rtol : float
+        The tolerance the magnification grids are made for (``adhesion_zeta(surface,
+        rtol)`` and its refinement), in [1e-12, 0.1]. [-]
 
-    Returns a tuple (G, c, wa, wb, G_fine, c_fine, wa_fine, wb_fine, gamma_s, scale): the
-    scaled kernel inputs on the nested magnification grids of ``adhesion_zeta(surface,
-    rtol)``, gamma_s (< 0 for S = 1) and the stress scale [Pa].
+    Returns
+    -------
+    tuple
+        (G, c, wa, wb, G_fine, c_fine, wa_fine, wb_fine, gamma_s, scale): the scaled kernel
+        inputs on the two nested grids, gamma_s (< 0 for S = 1) and the stress scale [Pa].
     """
     from .scene import _check_rtol, _check_scene_args, unpack_adhesive_scene
 
@@ -347,12 +439,29 @@ def _adhesive_args_status(scene, pressure, rtol):
 
 
 @njit_serial
-def adhesive_area(scene, pressure, rtol):
-    """(A(zeta1) / A0, status) of one nominal pressure [Pa] (tension < 0 allowed).
+def adhesive_area(scene: tuple, pressure: float, rtol: float) -> tuple[float, int]:
+    """(A(zeta1) / A0, status) of one nominal pressure (tension < 0 allowed).
 
-    ``scene`` from :func:`adhesive_scene`; the fixed point of seed Eqs. 8-9 on both nested
-    grids, Richardson-extrapolated (as :func:`persson_fast.solve_contact`, without its
-    warm start of the fine grid). A bad argument gives (NaN, its code): module table.
+    The fixed point of seed Eqs. 8-9 on the scene's two nested grids, Richardson-
+    extrapolated: the value :func:`persson_fast.solve_contact` returns from the same two
+    grids, without its warm start of the fine grid and without its a-posteriori error
+    control (no error estimate, no refinement beyond the two grids).
+
+    Parameters
+    ----------
+    scene : tuple
+        What :func:`adhesive_scene` returns.
+    pressure : float
+        Nominal pressure (tension < 0 allowed). [Pa]
+    rtol : float
+        Tolerance of the inner diffusion solves, in [RTOL_MIN, RTOL_MAX]. [-]
+
+    Returns
+    -------
+    area : float
+        A(zeta1)/A0; NaN for a bad argument. [-]
+    status : int
+        0 ok, else a code of ``STATUS_MESSAGES``.
     """
     s = _adhesive_args_status(scene, pressure, rtol)
     if s != _status.OK:

@@ -40,6 +40,11 @@ refuses it with a ValueError that says so, rather than answer with another model
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+
 from dataclasses import dataclass
 
 import numpy as np
@@ -158,7 +163,7 @@ class HardnessTable:
                 f"{self.sigma_y.max():.4g} Pa)")
 
 
-def hardness_power_law(sigma_y0, exponent) -> PowerLawHardness:
+def hardness_power_law(sigma_y0: float, exponent: float) -> PowerLawHardness:
     """A hardness rising (exponent > 0) as a power of the magnification: sigma_y0 zeta^n.
 
     Parameters
@@ -171,7 +176,7 @@ def hardness_power_law(sigma_y0, exponent) -> PowerLawHardness:
     return PowerLawHardness(_positive(sigma_y0, "sigma_y0", "Pa"), float(arr))
 
 
-def hardness_nix_gao(h0, length, q0) -> NixGaoHardness:
+def hardness_nix_gao(h0: float, length: float, q0: float) -> NixGaoHardness:
     """The indentation size effect H0 sqrt(1 + l q) at the wavenumber q = zeta q0.
 
     Parameters
@@ -185,7 +190,7 @@ def hardness_nix_gao(h0, length, q0) -> NixGaoHardness:
                           _positive(q0, "q0", "1/m"))
 
 
-def hardness_table(zeta, sigma_y) -> HardnessTable:
+def hardness_table(zeta: ArrayLike, sigma_y: ArrayLike) -> HardnessTable:
     """A hardness given on magnifications: interpolated linearly in ln sigma_Y against ln zeta.
 
     Parameters

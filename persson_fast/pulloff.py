@@ -12,6 +12,14 @@ are re-exported here (``persson_fast.pulloff.<name>`` keeps working).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+    
+    from .scene import Scene
+    from .surface_base import Surface
+
 import time
 
 import numpy as np
@@ -141,9 +149,11 @@ def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, 
     return (float(-hi), float(-lo)), solves
 
 
-def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=None,
-             detachment_prefactor=DETACHMENT_PREFACTOR, rtol=1e-6, zeta=None, controls=None,
-             full_output=False, bracket=True):
+def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
+             work_of_adhesion: float | None = None, energy_correction: float | None = None,
+             detachment_prefactor: float = DETACHMENT_PREFACTOR, rtol: float = 1e-6,
+             zeta: ArrayLike | None = None, controls: dict | None = None,
+             full_output: bool = False, bracket: bool = True) -> float | tuple[float, dict]:
     """Pull-off stress of a nominally flat contact: contact exists for p_nom > -sigma_c. [Pa]
 
     Parameters
@@ -161,12 +171,12 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
         Relative accuracy of sigma_c. [-]
     zeta : array_like, optional
         The coarsest of the nested magnification grids; the others are its refinements
-        (:func:`refine_zeta`); from 1 to zeta1 = q1/q0, as in
+        (``refine_zeta``); from 1 to zeta1 = q1/q0, as in
         :func:`persson_fast.solve_contact`. Default: :func:`adhesion_zeta` at ``rtol`` with
-        its points near zeta = 1 extended down to :func:`_near_one_min`. Where the scene is
+        its points near zeta = 1 extended down to ``_near_one_min``. Where the scene is
         not sticky on it, its refinements are tried (see Notes). [-]
     controls : dict, optional
-        Fixed-point controls (see :data:`ADHESION_DEFAULTS`); ``max_iter`` defaults to
+        Fixed-point controls (see ``ADHESION_DEFAULTS``); ``max_iter`` defaults to
         ``PULL_OFF_MAX_ITER`` and ``omega`` to ``PULL_OFF_OMEGA`` (0.5) here.
     full_output : bool
         Also return a dict of diagnostics (see Returns).
@@ -237,7 +247,7 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
     so it can stop on a remnant on its way to A = 0 (seed scene, Delta gamma = 0.04, rtol
     1e-3: A(zeta1) = 1.25e-7, sigma_a(1) = 16 Pa, while one more application of Eqs. 8-9
     gives sigma_a(1) = 0). From that state the iteration continues at p_nom = 0
-    (:meth:`_Branch.rest_state`): not sticky once g1 = gamma_eff(1)/Delta gamma lies below
+    (``_Branch.rest_state``): not sticky once g1 = gamma_eff(1)/Delta gamma lies below
     minus its error bar (propagated from the diffusion solves' area error estimates) on
     ``PULL_OFF_COLLAPSE`` successive iterates while A(zeta1) falls; sticky once converged
     (as a branch point) with g1 above its error bar; a state whose sign of g1 is within the
@@ -273,7 +283,7 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
     robust) is computed on at least three nested grids and Richardson-extrapolated, and the
     branch's change from there to the end is extrapolated from the two coarsest grids. The
     grids reach down to where sqrt(G) is ``PULL_OFF_NEAR_STRESS`` of sigma_a(1), so that the
-    layer near zeta = 1 is resolved (see :func:`_near_one_min`).
+    layer near zeta = 1 is resolved (see ``_near_one_min``).
 
     sigma_a(1) = c_1 (gamma_eff(1)/dgamma)^(1/2) magnifies an error of the area profile by
     dgamma/(2 gamma_eff(1)), so the diffusion solves of a branch point run at
@@ -281,7 +291,7 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
     <= 1e-6 and ``PULL_OFF_INNER_LOOSE`` (0.2) at rtol >= 1e-5, log-linear between (1e-8 at
     the end of the seed scene's branch for rtol = 1e-6, 4e-6 for rtol = 1e-4). The inner part
     of the estimate is never below ``PULL_OFF_INNER_FLOOR * sigma_c`` (5e-7), so an rtol
-    below about 5e-7 cannot be confirmed and warns. Seed scene on a 2-core machine: 0.15 /
+    below about 5e-7 cannot be confirmed and warns. Seed scene on a 2-core Intel Xeon machine: 0.15 /
     0.56 / 5.3 / 36 s at rtol 1e-3 / 1e-4 / 1e-5 / 1e-6, every value
     within its estimate of the reference.
     """

@@ -67,31 +67,51 @@ class DiffusionResult:
 
     Attributes
     ----------
-    G : (n_t,) -- diffusion times. [Pa^2]
-    pressure : (n_p,) -- nominal pressures sigma0. [Pa]
-    sigma_a : (n_p, n_t) -- detachment stress of the wall at -sigma_a. [Pa]
-    area : (n_p, n_t) -- relative contact area A(G)/A0. [-]
-    load : (n_p, n_t) -- load carried in contact, int sigma P dsigma. [Pa]
-    detached_area : (n_p, n_t) -- area detached through the wall (A + detached = 1). [-]
-    detached_load : (n_p, n_t) -- int sigma_a g dG (load = pressure + detached_load). [Pa]
-    error_estimate : (n_p, n_t) -- estimate of the absolute error of ``area``. [-]
-    method : str -- the method that produced the numbers.
-    status : (n_p,) int -- 0 ok, otherwise see ``message``.
-    success : bool, message : str
-    timings : dict -- seconds spent (``solve``; ``compile`` when this call compiled).
-    counts : (n_p, 3) int or None -- work of a compiled method per pressure: nodes (or time
-        nodes of "bnr"), steps, node-steps (kernel evaluations of "bnr").
-    plastic_area : (n_p, n_t) -- area absorbed at the yield wall sigma_y (zeros without
-        one); area + plastic_area + detached_area == 1. [-]
-    plastic_load : (n_p, n_t) -- int sigma_y dA_pl, the load the yielded area carries
-        (load + plastic_load - detached_load == pressure with a yield wall; detached_load
-        = int sigma_a dD as without one). [Pa]
-    sigma_y : float, (n_p, n_t) or None -- the yield wall: the constant, or its values at G
-        (samples or a callable evaluated there). [Pa]
+    G : numpy.ndarray, shape (n_t,)
+        Diffusion times. [Pa^2]
+    pressure : numpy.ndarray, shape (n_p,)
+        Nominal pressures sigma0. [Pa]
+    sigma_a : numpy.ndarray, shape (n_p, n_t)
+        Detachment stress of the wall at -sigma_a. [Pa]
+    area : numpy.ndarray, shape (n_p, n_t)
+        Relative contact area A(G)/A0 (with a yield wall: the elastic part). [-]
+    load : numpy.ndarray, shape (n_p, n_t)
+        Load carried in contact, int sigma P dsigma. [Pa]
+    detached_area : numpy.ndarray, shape (n_p, n_t)
+        Area detached through the wall (area + plastic_area + detached_area = 1). [-]
+    detached_load : numpy.ndarray, shape (n_p, n_t)
+        int sigma_a g dG (load = pressure + detached_load without a yield wall). [Pa]
+    error_estimate : numpy.ndarray, shape (n_p, n_t)
+        Estimate of the absolute error of ``area`` (with a yield wall solved by "strip":
+        of the real contact area area + plastic_area). [-]
+    method : str
+        The method that produced the numbers.
+    status : numpy.ndarray of int, shape (n_p,)
+        0 ok, otherwise see ``message`` (the codes of ``persson_fast.embed.STATUS_MESSAGES``).
+    success : bool
+        Whether every status is 0.
+    message : str
+        What the status codes mean.
+    timings : dict
+        Seconds spent (``solve``; ``compile`` when this call compiled). [s]
+    counts : numpy.ndarray of int, shape (n_p, 3), or None
+        Work of a compiled method per pressure: nodes (or time nodes of "bnr"), steps,
+        node-steps (kernel evaluations of "bnr").
+    plastic_area : numpy.ndarray, shape (n_p, n_t)
+        Area absorbed at the yield wall sigma_y (zeros without one). [-]
+    plastic_load : numpy.ndarray, shape (n_p, n_t)
+        int sigma_y dA_pl, the load the yielded area carries (load + plastic_load -
+        detached_load = pressure with a yield wall; detached_load = int sigma_a dD as
+        without one). [Pa]
+    sigma_y : float, numpy.ndarray of shape (n_p, n_t), or None
+        The yield wall: the constant, or its values at G (samples or a callable evaluated
+        there). [Pa]
 
+    Notes
+    -----
     With a yield wall solved by "strip", ``error_estimate`` and rtol refer to the real
-    contact area A = area + plastic_area (|dA| <= rtol A + 1e-12; the grid is refined until
-    the estimates of the elastic and plastic parts meet that bound too).
+    contact area A = area + plastic_area (abs(dA) <= rtol A + 1e-12; the grid is refined
+    until the estimates of the elastic and plastic parts meet that bound too).
     """
 
     G: np.ndarray
@@ -156,61 +176,101 @@ class ContactResult:
     """Result of :func:`persson_fast.solve_contact` (one scene, many pressures).
 
     ``repr`` (and ``print``) show a short summary; the arrays are the attributes below.
+    n_p is the number of pressures, n_z that of the magnifications ``zeta``.
 
     Attributes
     ----------
-    pressure : (n_p,) -- nominal pressures. [Pa]
-    area : (n_p,) -- A(zeta1)/A0, the relative real contact area. [-]
-    zeta : (n_z,) -- magnifications of the profiles; zeta[0] == 1, zeta[-1] == q1/q0. [-]
-    G : (n_z,) -- diffusion time G(zeta). [Pa^2]
-    area_zeta : (n_p, n_z) -- A(zeta)/A0. [-]
-    sigma_a : (n_p, n_z) -- detachment stress sigma_a(zeta) (zeros without adhesion). [Pa]
-    gamma_eff : (n_p, n_z) -- effective interfacial energy (zeros without adhesion). [J/m^2]
-    load : (n_p,) -- load carried in contact at zeta1. [Pa]
-    mean_contact_pressure : (n_p,) -- p_nom A0 / A, the mean stress in the contact by force
-        balance, F_N = p_nom A0 carried by the real contact area A (nan where A = 0). [Pa]
-    detached_area, detached_load : (n_p,) -- bookkeeping at zeta1. [-], [Pa]
-    error_estimate : (n_p,) -- estimate of the absolute error of ``area``. With adhesion:
-        the zeta-grid error of the returned (Richardson-extrapolated) area from three
-        nested grids, plus the inner diffusion solves' estimate; measured 0.5-10x the error
-        against converged references, 2-5x after a square-root onset of sigma_a (where
-        gamma_eff changes sign). A pressure whose estimate exceeds rtol is solved on finer
-        grids, and flagged (status 15) if the work cap leaves it above. [-]
-    method : str, status : (n_p,) int, success : bool, message : str, timings : dict
-    elastic_energy_zeta : (n_p, n_z) -- U_el(zeta) per nominal area (adhesion only). [J/m^2]
-    separation : (n_p,) -- mean interfacial separation u(p) (no adhesion; computed on first
-        access by the closed form of :mod:`persson_fast.separation`, ~3 us per pressure, and
-        kept; inf at p = 0). Adhesive scenes and the corrected theories raise a ValueError
-        that says why. [m]
-    stiffness : (n_p,) -- contact stiffness K = -dp/du per nominal area (as ``separation``;
-        0 at p = 0). [Pa/m]
-    elastic_energy : (n_p,) -- stored elastic energy U_el per nominal area at zeta = 1: the
-        closed form without adhesion (on first access), ``elastic_energy_zeta[:, 0]`` with
+    pressure : numpy.ndarray, shape (n_p,)
+        Nominal pressures. [Pa]
+    area : numpy.ndarray, shape (n_p,)
+        A(zeta1)/A0, the relative real contact area (with a yield wall: elastic plus
+        plastic). [-]
+    zeta : numpy.ndarray, shape (n_z,)
+        Magnifications of the profiles; zeta[0] == 1, zeta[-1] == q1/q0. [-]
+    G : numpy.ndarray, shape (n_z,)
+        Diffusion time G(zeta) (of the original theory also for a corrected one). [Pa^2]
+    area_zeta : numpy.ndarray, shape (n_p, n_z)
+        A(zeta)/A0. [-]
+    sigma_a : numpy.ndarray, shape (n_p, n_z)
+        Detachment stress sigma_a(zeta) (zeros without adhesion). [Pa]
+    gamma_eff : numpy.ndarray, shape (n_p, n_z)
+        Effective interfacial energy gamma_eff(zeta) (zeros without adhesion). [J/m^2]
+    load : numpy.ndarray, shape (n_p,)
+        Load carried in contact at zeta1, int sigma P dsigma; with a yield wall the load of
+        the elastic part, p - hardness * plastic_area (the yielded area carries the
+        rest). [Pa]
+    mean_contact_pressure : numpy.ndarray, shape (n_p,)
+        p_nom A0 / A, the mean stress in the contact by force balance, F_N = p_nom A0
+        carried by the real contact area A (nan where A = 0). [Pa]
+    detached_area : numpy.ndarray, shape (n_p,)
+        Area detached at zeta1 (area + detached_area = 1 without a yield wall). [-]
+    detached_load : numpy.ndarray, shape (n_p,)
+        Load carried off by the detached area at zeta1. [Pa]
+    error_estimate : numpy.ndarray, shape (n_p,)
+        Estimate of the absolute error of ``area``. With adhesion: the zeta-grid error of
+        the returned (Richardson-extrapolated) area from three nested grids, plus the inner
+        diffusion solves' estimate; measured 0.5-10x the error against converged
+        references, 2-5x after a square-root onset of sigma_a (where gamma_eff changes
+        sign). A pressure whose estimate exceeds rtol is solved on finer grids, and flagged
+        (status 15) if the work cap leaves it above. [-]
+    method : str
+        The method used ("analytic", "cn", "strip", ...).
+    status : numpy.ndarray of int, shape (n_p,)
+        0 ok, otherwise see ``message`` (the codes of ``persson_fast.embed.STATUS_MESSAGES``).
+    success : bool
+        Whether every status is 0.
+    message : str
+        What the status codes mean.
+    timings : dict
+        Seconds spent (``solve``; ``compile`` when this call compiled). [s]
+    elastic_energy_zeta : numpy.ndarray, shape (n_p, n_z), or None
+        U_el(zeta) per nominal area (adhesion only). [J/m^2]
+    iterations : numpy.ndarray of int, shape (n_p,), or None
+        Fixed-point iterations (adhesion).
+    residual : numpy.ndarray, shape (n_p,), or None
+        Final fixed-point residual, sup abs(F(x) - x) / max(abs(x), abs(p)) (adhesion). [-]
+    sticky : numpy.ndarray of bool, shape (n_p,), or None
+        gamma_eff(zeta = 1) > 0: macroscopically sticky (adhesion).
+    load_zeta, detached_load_zeta : numpy.ndarray, shape (n_p, n_z), or None
+        Load in contact and detached load (adhesion). [Pa]
+    zeta_error : numpy.ndarray, shape (n_p,), or None
+        Adhesion: the estimated error of ``area`` from the zeta grid; included in
+        ``error_estimate``. [-]
+    mean_contact_stress : numpy.ndarray, shape (n_p,), or None
+        load / A, the mean of the compressive stress distribution over the contact, int
+        sigma P dsigma / A (equal to ``mean_contact_pressure`` without adhesion; larger with
+        it, since the contact also carries the tension of the detached rims; nan where
+        A = 0). [Pa]
+    theory : str
+        The area theory: "persson01" (the original) or a corrected one, "yp08", "wm17",
+        "xu24".
+    theory_gamma : float or None
+        The gamma the corrected theory ran with (its published default when none was
+        given); None for "persson01". [-]
+    elastic_area, plastic_area : numpy.ndarray, shape (n_p,), or None
+        With a yield wall (``hardness``): the elastic and the yielded (plastically
+        deformed) fractions of A0 at zeta1; ``area`` is their sum, the real contact area
+        (both parts are in contact). None without one. [-]
+    plastic_area_zeta : numpy.ndarray, shape (n_p, n_z), or None
+        A_pl(zeta)/A0 (with a yield wall). [-]
+    plastic_load : numpy.ndarray, shape (n_p,), or None
+        With a yield wall and adhesion: int sigma_Y dA_pl, the load the yielded area
+        carries (load + plastic_load - detached_load = pressure). [Pa]
+    hardness : float, callable or None
+        The yield stress sigma_Y of the solve: a constant [Pa] or a scale-dependent one (a
+        callable of zeta, a hardness table).
+    separation : numpy.ndarray, shape (n_p,)
+        Mean interfacial separation u(p), computed on first access by the closed form of
+        :func:`persson_fast.solve_separation` and kept (inf at p = 0). Derived for the
+        original theory of elastic contact without adhesion: with adhesion, a yield wall or
+        a corrected theory reading it raises a ValueError that says why. [m]
+    stiffness : numpy.ndarray, shape (n_p,)
+        Contact stiffness K = -dp/du per nominal area (as ``separation``; 0 at p = 0).
+        [Pa/m]
+    elastic_energy : numpy.ndarray, shape (n_p,)
+        Stored elastic energy U_el per nominal area at zeta = 1: the closed form without
+        adhesion (on first access, as ``separation``), ``elastic_energy_zeta[:, 0]`` with
         it. [J/m^2]
-    iterations : (n_p,) int -- fixed-point iterations (adhesion; 0 otherwise).
-    residual : (n_p,) -- final fixed-point residual, sup|F(x) - x| / max(|x|, |p|). [-]
-    sticky : (n_p,) bool -- gamma_eff(zeta = 1) > 0 (macroscopically sticky).
-    load_zeta, detached_load_zeta : (n_p, n_z) -- load in contact and detached load. [Pa]
-    zeta_error : (n_p,) -- adhesion: estimated error of ``area`` from the zeta grid (see
-        :func:`persson_fast.adhesion._ladder_estimate`); included in ``error_estimate``. [-]
-    mean_contact_stress : (n_p,) -- load / A, the mean of the compressive stress
-        distribution over the contact, int sigma P dsigma / A (equal to
-        ``mean_contact_pressure`` without adhesion; larger with it, since the contact also
-        carries the tension of the detached rims; nan where A = 0). [Pa]
-    theory : str -- the area theory: "persson01" (the original) or a corrected one,
-        "yp08", "wm17", "xu24" (see :mod:`persson_fast.theories`).
-    theory_gamma : float or None -- the gamma the corrected theory ran with (its published
-        default when none was given); None for "persson01". [-]
-    elastic_area, plastic_area : (n_p,) -- with a yield wall (``hardness``): the elastic
-        and the yielded (plastically deformed) fractions of A0 at zeta1; ``area`` is their
-        sum, the real contact area (both parts are in contact). None without one. [-]
-    plastic_area_zeta : (n_p, n_z) -- A_pl(zeta)/A0 (with a yield wall). [-]
-    plastic_load : (n_p,) or None -- with a yield wall and adhesion: int sigma_Y dA_pl, the
-        load the yielded area carries (load + plastic_load - detached_load = pressure). [Pa]
-    hardness : float, callable or None -- the yield stress sigma_Y of the solve: a constant
-        [Pa] or a scale-dependent one (a callable of zeta, a ``HardnessTable``).
-    load : with a yield wall, the load of the elastic part, int sigma P dsigma
-        = p - hardness * plastic_area (the yielded area carries the rest). [Pa]
     """
 
     pressure: np.ndarray
@@ -245,9 +305,9 @@ class ContactResult:
     plastic_area_zeta: np.ndarray | None = None
     hardness: float | None = None
     plastic_load: np.ndarray | None = None
-    #: a callable pressure -> (separation, stiffness, elastic_energy, seconds) for a scene
-    #: whose separation is served (see :func:`persson_fast.separation.contact_fields`), or
-    #: the reason (a str) why it is not; set by solve_contact
+    # a callable pressure -> (separation, stiffness, elastic_energy, seconds) for a scene
+    # whose separation is served (see persson_fast.separation.contact_fields), or the
+    # reason (a str) why it is not; set by solve_contact
     separation_source: object = field(default=None, repr=False, compare=False)
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
@@ -283,7 +343,8 @@ class ContactResult:
 
     @property
     def separation(self) -> np.ndarray:
-        """Mean interfacial separation u(p) (see the class docstring). [m]"""
+        """Mean interfacial separation u(p), computed on first access (see the class
+        docstring). [m]"""
         return self._separation_result()[0]
 
     @property

@@ -63,6 +63,16 @@ failure warning's text). The names importable from here before are re-exported
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from collections.abc import Callable, Sequence
+    
+    import xarray
+    from numpy.typing import ArrayLike
+    
+    from .surface_base import Surface
+
 import time
 import warnings
 
@@ -99,11 +109,18 @@ class ScanWarning(UserWarning):
 # ----------------------------------------------------------------------------------------------
 # the public function
 # ----------------------------------------------------------------------------------------------
-def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy_correction=None,
-         detachment_prefactor=DETACHMENT_PREFACTOR, method="auto", rtol=1e-6, zeta=None, profiles=False,
-         pull_off=False, pull_off_rtol=None, client=None, chunks=None, workers=None,
-         progress=None, theory="persson01", theory_gamma=None, separation=False,
-         hardness=None):
+def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
+         pressure: ArrayLike, *, e_star: float | None = None, work_of_adhesion: float = 0.0,
+         energy_correction: float | None = None,
+         detachment_prefactor: float = DETACHMENT_PREFACTOR, method: str = "auto",
+         rtol: float = 1e-6, zeta: ArrayLike | None = None, profiles: bool = False,
+         pull_off: bool = False, pull_off_rtol: float | None = None,
+         client: object | str | None = None, chunks: int | None = None,
+         workers: int | None = None, progress: bool | Callable[[int, int], object] | None = None,
+         theory: str | Sequence[str] = "persson01", theory_gamma: float | None = None,
+         separation: bool = False,
+         hardness: float | Callable[[np.ndarray], np.ndarray] | ArrayLike | None = None,
+         ) -> xarray.Dataset:
     """Contact area over a grid of scenes crossed with nominal pressures.
 
     Parameters
@@ -206,7 +223,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         * ``area`` (..., pressure) -- A(zeta1)/A0. [-]
         * ``mean_contact_pressure`` (..., pressure) -- load / area, NaN without contact. [Pa]
         * ``error_estimate`` (..., pressure) -- estimated absolute error of ``area``. [-]
-        * ``status`` (..., pressure) -- 0 ok, else see ``message``; :data:`SCENE_ERROR`
+        * ``status`` (..., pressure) -- 0 ok, else see ``message``; ``SCENE_ERROR``
           (-1) where the scene's ``solve_contact`` raised.
         * ``success``, ``message``, ``method`` (...) -- per scene. ``message`` is
           ``solve_contact``'s message when the scene succeeded; when it failed it starts with

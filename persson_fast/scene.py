@@ -32,8 +32,22 @@ def _check_rtol(rtol, name: str = "rtol") -> float:
     return value
 
 
-def default_zeta(surface, per_decade: int = ZETA_PER_DECADE) -> np.ndarray:
-    """Magnifications 1 ... zeta1 log-spaced, with the surface's breakpoints included. [-]"""
+def default_zeta(surface: Surface, per_decade: int = ZETA_PER_DECADE) -> np.ndarray:
+    """Magnifications 1 ... zeta1 log-spaced, with the surface's breakpoints included. [-]
+
+    Parameters
+    ----------
+    surface : Surface
+        The rough surface (its q0, q1 and breakpoints are used).
+    per_decade : int
+        Points per decade of zeta (default 8, the profile grid of ``solve_contact``
+        without adhesion). [-]
+
+    Returns
+    -------
+    numpy.ndarray
+        Increasing magnifications from 1 to zeta1 = q1/q0 exactly. [-]
+    """
     zeta1 = surface.q1 / surface.q0
     n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
     z = np.geomspace(1.0, zeta1, n)
@@ -184,13 +198,16 @@ class Scene:
         gamma_S of S = gamma_S + (1 - gamma_S) P^2, in [0, 1]; None: S = 1. [-]
     detachment_prefactor : float
         beta of seed Eq. 8 (default ``DETACHMENT_PREFACTOR`` = 1/sqrt 2). [-]
-    hardness : float or None
-        The yield wall (without adhesion; see :mod:`persson_fast.plasticity`): a constant
-        penetration hardness sigma_Y > 0 [Pa], a callable of zeta (``hardness_power_law``,
-        ``hardness_nix_gao``, your own), a table (zeta, sigma_Y) (``hardness_table``), or None
-        (default, elastic). A scale-dependent hardness is solved by ``solve_contact``; the
-        scan takes numbers only.
+    hardness : float, callable, table or None
+        The yield wall, with or without adhesion (see ``persson_fast.plasticity``): a
+        constant penetration hardness sigma_Y > 0 [Pa], a callable of zeta
+        (``hardness_power_law``, ``hardness_nix_gao``, your own), a table (zeta, sigma_Y)
+        (``hardness_table``), or None (default, elastic). ``solve_contact`` and ``scan``
+        take every form; ``pull_off``, the separation and ``embed`` refuse a scene with
+        one.
 
+    Notes
+    -----
     The values are validated on construction (the rules of :func:`persson_fast.solve_contact`,
     including that the scene stays finite in float64) and stored as floats.
     ``solve_contact(scene, pressure, ...)`` equals ``solve_contact(scene.surface, pressure,

@@ -55,6 +55,14 @@ interest) are flagged.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+    
+    from .scene import Scene
+    from .surface_base import Surface
+
 import functools
 import math
 import time
@@ -350,19 +358,33 @@ class SeparationResult:
 
     Attributes
     ----------
-    pressure : (n_p,) -- nominal pressures. [Pa]
-    separation : (n_p,) -- mean interfacial separation u(p). [m]
-    stiffness : (n_p,) -- contact stiffness K = -dp/du per nominal area. [Pa/m]
-    elastic_energy : (n_p,) -- stored elastic energy U_el per nominal area. [J/m^2]
-    area : (n_p,) -- A/A0 = erf(p / (2 sqrt G1)), the area the three rest on. [-]
-    decay_length : float -- u0 of the small-pressure law p ~ exp(-u/u0). [m]
-    energy_correction : float or None -- gamma_S of S (None: S = 1). [-]
-    status : (n_p,) int -- 0 ok (p = 0 included: u = inf, K = 0, U_el = 0 exactly);
-        ``BELOW_RESOLVED`` (17) for pressures below ``pressure_floor`` (the quadrature near
-        q0 is not resolved there); ``SEPARATION_UNDERFLOW`` (22) where u or Q = p/K falls
-        below ~1e-292 m (pressures far above sqrt(G1): u may be 0 and K inf).
-    pressure_floor : float -- see :class:`SeparationNodes`. [Pa]
-    success : bool, message : str, timings : dict
+    pressure : numpy.ndarray, shape (n_p,)
+        Nominal pressures. [Pa]
+    separation : numpy.ndarray, shape (n_p,)
+        Mean interfacial separation u(p). [m]
+    stiffness : numpy.ndarray, shape (n_p,)
+        Contact stiffness K = -dp/du per nominal area. [Pa/m]
+    elastic_energy : numpy.ndarray, shape (n_p,)
+        Stored elastic energy U_el per nominal area. [J/m^2]
+    area : numpy.ndarray, shape (n_p,)
+        A/A0 = erf(p / (2 sqrt G1)), the area the three rest on. [-]
+    decay_length : float
+        u0 of the small-pressure law p ~ exp(-u/u0). [m]
+    energy_correction : float or None
+        gamma_S of S (None: S = 1). [-]
+    status : numpy.ndarray of int, shape (n_p,)
+        0 ok (p = 0 included: u = inf, K = 0, U_el = 0 exactly); ``BELOW_RESOLVED`` (17)
+        for pressures below ``pressure_floor`` (the quadrature near q0 is not resolved
+        there); ``SEPARATION_UNDERFLOW`` (22) where u or Q = p/K falls below ~1e-292 m
+        (pressures far above sqrt(G1): u may be 0 and K inf).
+    pressure_floor : float
+        The smallest pressure the quadrature resolves. [Pa]
+    success : bool
+        Whether every status is 0.
+    message : str
+        What the status codes mean.
+    timings : dict
+        Seconds spent. [s]
     """
 
     pressure: np.ndarray
@@ -407,13 +429,14 @@ def _evaluate(nodes: SeparationNodes, gamma_s: float, p: np.ndarray, parallel=No
     return (u, q, dq, energy, status) if slope else (u, q, energy, status)
 
 
-def decay_length(surface, *, e_star=None, energy_correction=None) -> float:
+def decay_length(surface: Surface | Scene, *, e_star: float | None = None,
+                 energy_correction: float | None = None) -> float:
     """u0 of the small-pressure law p ~ exp(-u/u0) (no adhesion). [m]
 
     Parameters
     ----------
     surface : Surface or Scene
-        The roughness, or a Scene without adhesion.
+        The roughness, or a Scene without adhesion and without a hardness.
     e_star : float
         Effective modulus E* > 0 (with a surface). [Pa]
     energy_correction : float or None
@@ -430,14 +453,16 @@ def decay_length(surface, *, e_star=None, energy_correction=None) -> float:
     return gamma_s * float(np.sum(nodes_for(surface, e).a_sep))
 
 
-def solve_separation(surface, pressure, *, e_star=None, energy_correction=None,
-                     parallel=None) -> SeparationResult:
+def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
+                     e_star: float | None = None, energy_correction: float | None = None,
+                     parallel: bool | str | None = None) -> SeparationResult:
     """Mean interfacial separation, contact stiffness and elastic energy (no adhesion).
 
     Parameters
     ----------
     surface : Surface or Scene
-        The roughness, or a :class:`~persson_fast.Scene` without adhesion.
+        The roughness, or a :class:`~persson_fast.Scene` without adhesion and without
+        a hardness.
     pressure : float or array_like, shape (n_p,)
         Nominal pressures, >= 0 and finite. At p = 0 the surfaces are apart: u = inf,
         K = 0, U_el = 0 and A = 0 (the limits, exactly; status 0), as
@@ -458,7 +483,7 @@ def solve_separation(surface, pressure, *, e_star=None, energy_correction=None,
     Closed form of the module docstring (Persson, PRL 99, 125502 (2007); Yang & Persson,
     J. Phys.: Condens. Matter 20, 215214 (2008)); no diffusion solve. Relative accuracy
     ~1e-12 (measured, see the module docstring), whatever a solver's rtol. A scene with
-    adhesion raises a ValueError (not derived here).
+    adhesion or a yield wall raises a ValueError (not derived here).
 
     Round trip: :func:`pressure_at_separation` of every u with status 0 returns its pressure
     (to its rtol; u = inf gives p = 0). At large pressure u ~ exp(-p^2/(4 G1)) leaves double
@@ -515,14 +540,15 @@ def solve_separation(surface, pressure, *, e_star=None, energy_correction=None,
 INVERSE_MAX_ITER = 60
 
 
-def pressure_at_separation(surface, separation, *, e_star=None, energy_correction=None,
-                           rtol=1e-10):
+def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
+                           e_star: float | None = None, energy_correction: float | None = None,
+                           rtol: float = 1e-10) -> float | np.ndarray:
     """Nominal pressure at a given mean interfacial separation: the inverse of u(p).
 
     Parameters
     ----------
     surface : Surface or Scene
-        The roughness, or a Scene without adhesion.
+        The roughness, or a Scene without adhesion and without a hardness.
     separation : float or array_like
         Mean interfacial separation u > 0 (inf allowed: the surfaces apart, p = 0). A u of
         0 is refused: it is full contact, reached at no finite pressure (a 0 from

@@ -7,6 +7,11 @@ Persson's isotropic convention for C(q), the moments and G(q) are described in
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+
 import abc
 import math
 import os
@@ -234,14 +239,14 @@ class Surface(abc.ABC):
     G(q), the full-contact elastic energy) is derived here from those moments. Constructors
     refuse parameters whose full-band moments are not finite in float64, naming them.
 
-    ``h_rms`` and ``slope_rms`` are properties whose value (a :class:`RmsValue`) is a float
+    ``h_rms`` and ``slope_rms`` are properties whose value (a ``RmsValue``) is a float
     that may also be called: ``s.h_rms * 1e9`` and ``s.h_rms()`` both work.
 
     A subclass declares its parameters once, for the command line and
     :func:`persson_fast.scan`: ``MODEL`` (its name there), ``PARAMETERS`` (name ->
-    :class:`Parameter`, the constructor's keyword arguments) and optionally ``MODEL_TITLE`` and
+    ``Parameter``, the constructor's keyword arguments) and optionally ``MODEL_TITLE`` and
     ``MODEL_DESCRIPTION`` (its group in the command line's help). Setting ``MODEL`` registers it
-    in :data:`SURFACE_MODELS` when the class is created.
+    in ``persson_fast.surfaces.SURFACE_MODELS`` when the class is created.
 
     Attributes
     ----------
@@ -332,7 +337,7 @@ class Surface(abc.ABC):
                 f"(k = 0..3) are finite in float64; got {got}, which {verb} {derived}")
 
     # --- public interface --------------------------------------------------------------------
-    def psd(self, q):
+    def psd(self, q: ArrayLike) -> float | np.ndarray:
         """Power spectral density C(q).
 
         Parameters
@@ -355,7 +360,8 @@ class Surface(abc.ABC):
         out = out.reshape(arr.shape)
         return float(out) if arr.ndim == 0 else out
 
-    def moment(self, k, q_lo=None, q_hi=None):
+    def moment(self, k: int, q_lo: ArrayLike | None = None,
+               q_hi: ArrayLike | None = None) -> float | np.ndarray:
         """Partial spectral moment :math:`\\int_{q_{lo}}^{q_{hi}} q^k C(q) dq`.
 
         Parameters
@@ -403,7 +409,7 @@ class Surface(abc.ABC):
         """Root-mean-square height, :math:`(2\\pi \\int q C dq)^{1/2}`. [m]
 
         A float (``s.h_rms * 1e9``, ``f"{s.h_rms:.3g}"``) that may also be called:
-        ``s.h_rms()`` returns the same value as a plain float (see :class:`RmsValue`).
+        ``s.h_rms()`` returns the same value as a plain float (see ``RmsValue``).
         """
         return RmsValue(math.sqrt(2.0 * math.pi * self.moment(1)))
 
@@ -412,11 +418,11 @@ class Surface(abc.ABC):
         """Root-mean-square slope, :math:`(2\\pi \\int q^3 C dq)^{1/2}`. [-]
 
         A float that may also be called: ``s.slope_rms()`` returns the same value (see
-        :class:`RmsValue`).
+        ``RmsValue``).
         """
         return RmsValue(math.sqrt(2.0 * math.pi * self.moment(3)))
 
-    def diffusion_time(self, q, e_star):
+    def diffusion_time(self, q: ArrayLike, e_star: float) -> float | np.ndarray:
         """Diffusion time G(q) of the stress distribution.
 
         Parameters
@@ -456,7 +462,7 @@ class Surface(abc.ABC):
             f"{name} = {value!r} [{unit}] for this surface (slope_rms = {float(self.slope_rms)!r} [-], "
             f"h_rms = {float(self.h_rms)!r} [m]); e_star is in Pa (E* = 1 GPa is 1e9)")
 
-    def to_csv(self, path, *, points_per_decade=20) -> str:
+    def to_csv(self, path: str | os.PathLike, *, points_per_decade: int = 20) -> str:
         """Write C(q) to a CSV file that :meth:`TabulatedPSD.from_file` reads back.
 
         Parameters
@@ -481,7 +487,7 @@ class Surface(abc.ABC):
         """
         return write_spectrum_csv(self, path, points_per_decade=points_per_decade)
 
-    def elastic_energy_full_contact(self, e_star) -> float:
+    def elastic_energy_full_contact(self, e_star: float) -> float:
         """Elastic energy per nominal area stored at full contact. [J/m^2]
 
         Parameters

@@ -157,7 +157,8 @@ class CapillaryWaves(Surface):
         "gravity": Parameter("m/s^2", "gravity", metavar="G"),
     }
 
-    def __init__(self, temperature, surface_tension, q_c, q0, q1, density=0.0, gravity=9.81):
+    def __init__(self, temperature: float, surface_tension: float, q_c: float, q0: float,
+                 q1: float, density: float = 0.0, gravity: float = 9.81):
         self.temperature = _positive_scalar(temperature, "temperature", "K")
         self.surface_tension = _positive_scalar(surface_tension, "surface_tension", "J/m^2")
         self.q_c = _positive_scalar(q_c, "q_c", "1/m")
@@ -292,10 +293,6 @@ class SelfAffine(Surface):
     C0 : float, optional
         Plateau value of C, > 0. [m^4]
 
-    Exactly one of ``h_rms``, ``slope_rms`` and ``C0`` must be given; the others follow. It
-    must leave C0 and the moments of C finite in float64 (``slope_rms=1e200`` would give
-    C0 = inf): otherwise a ValueError names it.
-
     Attributes
     ----------
     hurst : float
@@ -307,6 +304,10 @@ class SelfAffine(Surface):
 
     Notes
     -----
+    Exactly one of ``h_rms``, ``slope_rms`` and ``C0`` must be given; the others follow. It
+    must leave C0 and the moments of C finite in float64 (``slope_rms=1e200`` would give
+    C0 = inf): otherwise a ValueError names it.
+
     .. math::
 
         C(q) = C_0 \\ (q_0 \\le q < q_r), \\qquad
@@ -333,7 +334,9 @@ class SelfAffine(Surface):
         "C0": Parameter("m^4", "plateau of the spectrum"),
     }
 
-    def __init__(self, hurst, q0, q1, q_r=None, h_rms=None, slope_rms=None, C0=None):
+    def __init__(self, hurst: float, q0: float, q1: float, q_r: float | None = None,
+                 h_rms: float | None = None, slope_rms: float | None = None,
+                 C0: float | None = None):
         self.hurst = _check_hurst(hurst)
         self.q0 = _positive_scalar(q0, "q0", "1/m")
         self.q1 = _positive_scalar(q1, "q1", "1/m")
@@ -416,8 +419,16 @@ SEED_WORK_OF_ADHESION = 0.06
 def seed_e_star(poisson: float = SEED_POISSON) -> float:
     """Effective modulus E* = E / (1 - nu^2) of the seed's PMMA (E = 2.9 GPa). [Pa]
 
-    The seed paper gives no Poisson ratio; ``poisson`` (default 0.3, assumed) must lie in
-    [0, 0.5].
+    Parameters
+    ----------
+    poisson : float
+        Poisson ratio nu in [0, 0.5]; the seed paper gives none, 0.3 (default) is
+        assumed. [-]
+
+    Returns
+    -------
+    float
+        E* = 2.9e9 / (1 - nu^2). [Pa]
     """
     nu = float(poisson)
     if not (math.isfinite(nu) and 0.0 <= nu <= 0.5):

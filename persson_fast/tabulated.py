@@ -9,6 +9,13 @@ topography, psd.
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from collections.abc import Sequence
+    
+    from numpy.typing import ArrayLike
+
 import math
 import os
 
@@ -53,7 +60,8 @@ class TabulatedPSD(Surface):
     accuracy even far out in a decaying tail.
     """
 
-    def __init__(self, q, C, q0=None, q1=None):
+    def __init__(self, q: ArrayLike, C: ArrayLike, q0: float | None = None,
+                 q1: float | None = None):
         qa = as_float_array(q, "q", "1/m", ndim=(1,))
         ca = as_float_array(C, "C", "m^4", ndim=(1,))
         check_positive(qa, "q", "1/m")
@@ -94,7 +102,8 @@ class TabulatedPSD(Surface):
                                        "C": f"max(C) = {float(ca.max())!r} [m^4]"})
 
     @classmethod
-    def from_line_scan(cls, q, C1d, hurst, q0=None, q1=None):
+    def from_line_scan(cls, q: ArrayLike, C1d: ArrayLike, hurst: float, q0: float | None = None,
+                       q1: float | None = None) -> TabulatedPSD:
         """Isotropic 2-D spectrum from a 1-D (line-scan) spectrum.
 
         Parameters
@@ -137,8 +146,10 @@ class TabulatedPSD(Surface):
         return cls(qa, c1 * factor / qa, q0=q0, q1=q1)
 
     @classmethod
-    def from_heights(cls, heights, pixel_size, *, q0=None, q1=None, bins_per_decade=10,
-                     window=None, periodic=False, detrend=None, line_scans=None, hurst=None):
+    def from_heights(cls, heights: ArrayLike, pixel_size: float | Sequence[float], *,
+                     q0: float | None = None, q1: float | None = None, bins_per_decade: int = 10,
+                     window: str | None = None, periodic: bool = False, detrend: str | None = None,
+                     line_scans: bool | None = None, hurst: float | None = None) -> TabulatedPSD:
         """Isotropic spectrum of a height map or of line scans given as a numpy array.
 
         Parameters
@@ -187,11 +198,11 @@ class TabulatedPSD(Surface):
 
         Notes
         -----
-        Persson's C(q) = |h~(q)|²/((2π)² A) for each Fourier mode of a map (h~ = Δx Δy Σ h
+        Persson's C(q) = abs(h~(q))²/((2π)² A) for each Fourier mode of a map (h~ = Δx Δy Σ h
         e^{-iq·x}, A the scan area), averaged in log bins so that every bin keeps the power
         of its modes: with the default band h_rms is the data's own rms height. Line scans:
-        C_1D = |h~|²/(2π L), then C = C_1D Γ(1+H)/(√π Γ(H+½) q) (see :meth:`from_line_scan`).
-        The module :mod:`persson_fast.topography` gives the derivation and the expected
+        C_1D = abs(h~)²/(2π L), then C = C_1D Γ(1+H)/(√π Γ(H+½) q) (see :meth:`from_line_scan`).
+        The module ``persson_fast.topography`` gives the derivation and the expected
         errors.
         """
         from .topography import spectrum_from_heights
@@ -205,8 +216,10 @@ class TabulatedPSD(Surface):
         return out
 
     @classmethod
-    def from_topography(cls, topography, *, q0=None, q1=None, bins_per_decade=10,
-                        window=None, detrend=None, line_scans=None, hurst=None):
+    def from_topography(cls, topography: object, *, q0: float | None = None,
+                        q1: float | None = None, bins_per_decade: int = 10,
+                        window: str | None = None, detrend: str | None = None,
+                        line_scans: bool | None = None, hurst: float | None = None) -> TabulatedPSD:
         """Isotropic spectrum of a SurfaceTopography map or uniform line scan.
 
         Parameters
@@ -240,7 +253,9 @@ class TabulatedPSD(Surface):
         return out
 
     @classmethod
-    def from_file(cls, path, *, q_unit=None, C_unit=None, q0=None, q1=None):
+    def from_file(cls, path: str | os.PathLike, *, q_unit: str | None = None,
+                  C_unit: str | None = None, q0: float | None = None,
+                  q1: float | None = None) -> TabulatedPSD:
         """Spectrum from a plain two-column text file (CSV or whitespace-separated).
 
         Parameters

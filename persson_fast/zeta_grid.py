@@ -7,6 +7,11 @@ kernels take (G, c, and the exact U_el weights wa, wb of seed Eq. 9).
 """
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # names of the type hints only
+    from .surface_base import Surface
+
 import numpy as np
 
 __all__ = ["adhesion_zeta", "refine_zeta", "coarsen_zeta"]
@@ -39,7 +44,7 @@ NARROW_CELL_RTOL = 1.5e-8
 EMPTY_CELL_GTOL = 1e-12
 
 
-def adhesion_zeta(surface, rtol: float = 1e-6, per_decade: int | None = None,
+def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None = None,
                   near_one_min: float | None = None) -> np.ndarray:
     """Default magnification grid of the adhesive problem. [-]
 

@@ -124,8 +124,25 @@ def law_logs(law, u):
 
 
 @njit_serial
-def law_pressure(law, u):
-    """(p [Pa], status) of the law at separation u [m]."""
+def law_pressure(law: tuple, u: float) -> tuple[float, int]:
+    """(p [Pa], status) of the law at separation u [m].
+
+    Parameters
+    ----------
+    law : tuple of five numpy.ndarray
+        ``ContactLaw.table`` of :func:`persson_fast.embed.contact_law`.
+    u : float
+        Mean interfacial separation, > 0 and finite. [m]
+
+    Returns
+    -------
+    p : float
+        The nominal pressure p(u). [Pa]
+    status : int
+        0 ok; ``BAD_SEPARATION`` (18, p NaN) for u not finite or <= 0;
+        ``LAW_EXTRAPOLATED`` (19) below the table's smallest separation; ``BAD_LAW`` (21,
+        p NaN) for a table that :func:`law_status` refuses.
+    """
     if law_status(law) != OK:
         return math.nan, BAD_LAW
     v_nodes, y, dy, z, dz = law
@@ -142,23 +159,72 @@ def law_pressure(law, u):
 
 
 @njit_serial
-def law_stiffness(law, u):
-    """(K = -dp/du [Pa/m], status) of the law at separation u [m]."""
+def law_stiffness(law: tuple, u: float) -> tuple[float, int]:
+    """(K = -dp/du [Pa/m], status) of the law at separation u [m].
+
+    Parameters
+    ----------
+    law : tuple of five numpy.ndarray
+        ``ContactLaw.table`` of :func:`persson_fast.embed.contact_law`.
+    u : float
+        Mean interfacial separation, > 0 and finite. [m]
+
+    Returns
+    -------
+    K : float
+        The contact stiffness -dp/du per nominal area. [Pa/m]
+    status : int
+        As :func:`law_pressure`.
+    """
     _, ln_k, status = law_logs(law, u)
     return math.exp(ln_k), status
 
 
 @njit_serial
-def law_pressure_stiffness(law, u):
-    """(p [Pa], K [Pa/m], status) of the law at separation u [m], from one look-up."""
+def law_pressure_stiffness(law: tuple, u: float) -> tuple[float, float, int]:
+    """(p [Pa], K [Pa/m], status) of the law at separation u [m], from one look-up.
+
+    Parameters
+    ----------
+    law : tuple of five numpy.ndarray
+        ``ContactLaw.table`` of :func:`persson_fast.embed.contact_law`.
+    u : float
+        Mean interfacial separation, > 0 and finite. [m]
+
+    Returns
+    -------
+    p : float
+        The nominal pressure p(u). [Pa]
+    K : float
+        The contact stiffness -dp/du per nominal area. [Pa/m]
+    status : int
+        As :func:`law_pressure`.
+    """
     ln_p, ln_k, status = law_logs(law, u)
     return math.exp(ln_p), math.exp(ln_k), status
 
 
 @njit_serial
-def law_separation(law, p):
+def law_separation(law: tuple, p: float) -> tuple[float, int]:
     """(u [m], status) of the law at pressure p [Pa]: the inverse of :func:`law_pressure`.
 
+    Parameters
+    ----------
+    law : tuple of five numpy.ndarray
+        ``ContactLaw.table`` of :func:`persson_fast.embed.contact_law`.
+    p : float
+        Nominal pressure, > 0 and finite. [Pa]
+
+    Returns
+    -------
+    u : float
+        The mean interfacial separation u(p). [m]
+    status : int
+        0 ok, ``LAW_EXTRAPOLATED`` above the table's pressures, ``BAD_PRESSURE`` (u NaN)
+        for p not finite or <= 0.
+
+    Notes
+    -----
     On a table interval the monotone cubic ln p(ln u) is inverted by Newton's method
     safeguarded by bisection (to rounding), so law_pressure(law, u) returns p to rounding;
     below the table's pressures the exponential tail is inverted exactly; above them the
