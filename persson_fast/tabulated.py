@@ -158,7 +158,7 @@ class TabulatedPSD(Surface):
             Heights on a uniform grid, all defined (no NaN): 1-D (one line scan of at least 4
             points), 2-D (a map of at least 4 x 4 pixels, rows along y), or 2-D with
             ``line_scans=True`` (parallel line scans, one per row, whose 1-D spectra are
-            averaged). Heights and pixel size must give a spectrum C = |h~|²/((2π)² A) and
+            averaged). Heights and pixel size must give a spectrum C = abs(h~)²/((2π)² A) and
             moments of it that double precision represents (heights in metres: a map in
             nm given as numbers of nm is off by 1e-36 in C). [m]
         pixel_size : float or sequence of float

@@ -27,6 +27,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .._jit import njit_serial
 from .status import BAD_INPUT, BAD_LAW, BAD_PRESSURE, BAD_SEPARATION, LAW_EXTRAPOLATED, OK
 
@@ -64,10 +66,22 @@ def _hermite(v_nodes, f, df, i, v):
 
 
 @njit_serial
-def law_status(law):
-    """``OK`` when ``law`` is a table that :func:`persson_fast.contact_law.contact_law` can
-    have built, else ``BAD_LAW``.
+def law_status(law: tuple) -> int:
+    """``OK`` when ``law`` is a table that :func:`persson_fast.embed.contact_law` can have
+    built, else ``BAD_LAW``.
 
+    Parameters
+    ----------
+    law : tuple of five numpy.ndarray
+        ``ContactLaw.table``: ln u, ln p, d ln p/d ln u, ln K, d ln K/d ln u at the nodes.
+
+    Returns
+    -------
+    int
+        ``OK`` (0) or ``BAD_LAW`` (21).
+
+    Notes
+    -----
     The rules: five arrays of one length n >= 2; v = ln u strictly increasing and y = ln p
     strictly decreasing, both within [LOG_LOW, LOG_HIGH] (logarithms of doubles); the slopes
     dy < 0 and every value of z, dz finite; every interval monotone by the Fritsch-Carlson
@@ -289,11 +303,26 @@ def law_sweep_unchecked(law, u, out_p, out_k, out_status):
 
 
 @njit_serial
-def law_sweep(law, u, out_p, out_k, out_status):
-    """The law at every separation of ``u`` (p [Pa], K [Pa/m] and status written into the
-    outputs, each of u's length), the table checked once: a bad table fills every output
-    with NaN and ``BAD_LAW``; outputs of another length than ``u``, with NaN and
-    ``BAD_INPUT``."""
+def law_sweep(law: tuple, u: np.ndarray, out_p: np.ndarray, out_k: np.ndarray,
+              out_status: np.ndarray) -> None:
+    """The law at every separation of ``u``, the table checked once.
+
+    Parameters
+    ----------
+    law : tuple of five numpy.ndarray
+        ``ContactLaw.table`` of :func:`persson_fast.embed.contact_law`.
+    u : numpy.ndarray
+        Mean interfacial separations, 1-D. [m]
+    out_p, out_k : numpy.ndarray
+        Outputs of u's length: the pressure p(u) [Pa] and the stiffness K(u) [Pa/m].
+    out_status : numpy.ndarray of int64
+        Output of u's length: the status per separation (as :func:`law_pressure`).
+
+    Notes
+    -----
+    A bad table fills every output with NaN and ``BAD_LAW``; outputs of another length than
+    ``u``, with NaN and ``BAD_INPUT``.
+    """
     n = u.shape[0]
     s = law_status(law)
     if out_p.shape[0] != n or out_k.shape[0] != n or out_status.shape[0] != n:
