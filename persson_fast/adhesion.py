@@ -26,7 +26,7 @@ from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP
                                adhesive_sweep_serial, elastic_step, elastic_step_linked,
                                fixed_point, yield_step, yield_step_linked)
 from ._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
-from ._kernels.status import NOT_CONVERGED, RTOL_NOT_MET
+from ._kernels.status import GRID_CAP, NOT_CONVERGED, RTOL_NOT_MET
 from ._kernels.theories import WM17, YP08
 from ._validation import as_float_array, check_finite
 from .methods import check_serves, choose_auto, variant_of
@@ -34,7 +34,8 @@ from .results import ContactResult, per_contact_area, summarize_status
 from .scene import DETACHMENT_PREFACTOR
 from .yield_api import FAR_MASS, yield_wall_reach
 from .sweep import choose_parallel, is_compiled, prange_guard, run_rows
-from .zeta_grid import (NARROW_CELL_RTOL, _scene_arrays, adhesion_zeta, coarsen_zeta,
+from .zeta_grid import (NARROW_CELL_RTOL, _merged_breakpoints, _scene_arrays, _scene_rows,
+                        adhesion_zeta, coarsen_zeta, onset_at, onset_coordinate, onset_grid,
                         refine_zeta)
 
 __all__ = ["adhesion_zeta", "solve_adhesive_contact", "ADHESION_DEFAULTS"]
@@ -48,24 +49,53 @@ ADHESION_DEFAULTS = {"max_iter": DEFAULT_MAX_ITER, "m_hist": DEFAULT_M_HIST,
                      "omega": DEFAULT_OMEGA, "n_damp": DEFAULT_N_DAMP}
 
 
+def _rows(a, n_p, width):
+    """``a`` as (n_p, width) C-contiguous rows: a 1-D array (one grid for every row) repeated,
+    or rows of at most ``width`` entries padded with zeros."""
+    a = np.asarray(a, dtype=float)
+    if a.ndim == 1:
+        return np.repeat(a[None, :], n_p, axis=0)
+    if a.shape[1] == width and a.flags.c_contiguous and a.flags.writeable:
+        return a
+    out = np.zeros((n_p, width))
+    out[:, :a.shape[1]] = a
+    return out
+
+
 def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None, variant=0,
-         onset=True, theory=0, theory_gamma=1.0, sy=None):
+         onset=True, theory=0, theory_gamma=1.0, sy=None, n_z=None):
     """The compiled fixed point of every pressure: outputs (8 arrays (n_p, n_z): area,
     sigma_a, g, u, load, detached area and load, error; with a yield wall ``sy`` (n_p, n_z)
-    two more, the plastic area and load), status, iterations, residual and timings."""
-    n_p, n_z = p_scaled.size, G.size
-    outs = [np.zeros((n_p, n_z)) for _ in range(8 if sy is None else 10)]
+    two more, the plastic area and load), status, iterations, residual and timings.
+
+    ``G``, ``c`` (n_z,) and ``wa``, ``wb`` (n_z - 1,): one zeta grid for every pressure; or
+    rows (n_p, n_max) and (n_p, n_max - 1) with ``n_z`` (n_p,) the number of nodes of each
+    row's own grid (the outputs then (n_p, n_max), each row's first n_z entries). ``rtol``:
+    the diffusion tolerance, one for every pressure or one per pressure (n_p,).
+    """
+    p_scaled = np.ascontiguousarray(p_scaled, dtype=float)
+    n_p = p_scaled.size
+    G = np.asarray(G, dtype=float)
+    if n_z is None:
+        n_z = np.full(n_p, G.shape[-1], dtype=np.int64)
+    n_z = np.ascontiguousarray(n_z, dtype=np.int64)
+    n_max = int(G.shape[-1])
+    G, c = _rows(G, n_p, n_max), _rows(c, n_p, n_max)
+    wa, wb = _rows(wa, n_p, n_max - 1), _rows(wb, n_p, n_max - 1)
+    rtol = np.ascontiguousarray(np.broadcast_to(np.asarray(rtol, dtype=float), (n_p,)))
+    outs = [np.zeros((n_p, n_max)) for _ in range(8 if sy is None else 10)]
     if sy is None:                       # no yield wall: rows of length 0
         step = elastic_step
         yield_args = [np.zeros((n_p, 0)) for _ in range(3)]
     else:
         step = yield_step
-        yield_args = [np.ascontiguousarray(sy, dtype=float), outs[8], outs[9]]
+        yield_args = [_rows(sy, n_p, n_max), outs[8], outs[9]]
     status = np.zeros(n_p, dtype=np.int64)
     iterations = np.zeros(n_p, dtype=np.int64)
     residual = np.zeros(n_p)
     if x_init is None:
-        x_init = np.full((n_p, n_z), -1.0)
+        x_init = np.full((n_p, n_max), -1.0)
+    x_init = _rows(x_init, n_p, n_max)
     mode = choose_parallel(parallel, n_p)
     if mode == "prange":                 # compiled per process: the solvers linked in
         kernel, callees = adhesive_sweep_parallel, [fixed_point, LINKED_STEPS[step], None]
@@ -74,10 +104,11 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
     timings = {}
     if not is_compiled(kernel):
         t0 = time.perf_counter()
-        first = [*callees, variant, G, c, wa, wb, gamma_s, p_scaled[:1], 1e-2, controls["n_damp"],
-                 2, controls["m_hist"], controls["omega"], x_init[:1],
-                 *[o[:1] for o in outs[:8]], status[:1], iterations[:1], residual[:1],
-                 bool(onset), int(theory), float(theory_gamma), *[a[:1] for a in yield_args]]
+        first = [*callees, variant, G[:1], c[:1], wa[:1], wb[:1], n_z[:1], gamma_s,
+                 p_scaled[:1], np.full(1, 1e-2), controls["n_damp"], 2, controls["m_hist"],
+                 controls["omega"], x_init[:1], *[o[:1] for o in outs[:8]], status[:1],
+                 iterations[:1], residual[:1], bool(onset), int(theory), float(theory_gamma),
+                 *[a[:1] for a in yield_args]]
         with _compile_lock:
             if mode == "prange":
                 with prange_guard():
@@ -86,13 +117,13 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
                 _compile_fixed_point(first)
                 kernel(*first)
         timings["compile"] = time.perf_counter() - t0
-    args = [*callees, variant, G, c, wa, wb, gamma_s, np.ascontiguousarray(p_scaled), rtol,
-            controls["n_damp"], controls["max_iter"], controls["m_hist"], controls["omega"],
-            np.ascontiguousarray(x_init), *outs[:8], status, iterations, residual, bool(onset),
-            int(theory), float(theory_gamma), *yield_args]
+    args = [*callees, variant, G, c, wa, wb, n_z, gamma_s, p_scaled, rtol, controls["n_damp"],
+            controls["max_iter"], controls["m_hist"], controls["omega"], x_init, *outs[:8],
+            status, iterations, residual, bool(onset), int(theory), float(theory_gamma),
+            *yield_args]
     t0 = time.perf_counter()
-    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args, (9, 15, 30),
-             tuple(range(16, 27)) + (31, 32), n_p, parallel)
+    run_rows(adhesive_sweep_serial, adhesive_sweep_parallel, args,
+             (4, 5, 6, 7, 8, 10, 11, 16, 31), tuple(range(17, 28)) + (32, 33), n_p, parallel)
     timings["solve"] = time.perf_counter() - t0
     return outs, status, iterations, residual, timings
 
@@ -204,6 +235,29 @@ CROSSING_MIN_PER_DECADE = 20
 CROSSING_LATE = 0.1
 CROSSING_INNER_DIV = 4.0
 CROSSING_INNER_MARGIN = 2.5
+#: a graded level is solved again, centred on its own sign change, while that lies more than
+#: this fraction of the level's narrowest graded cell from the centre (at most
+#: ONSET_CENTRE_PASSES times); measured on a self-affine scene (H 0.64, rtol 1e-4): centres
+#: 0.1 and 0.03 of level 2's narrowest cell off left the end area 0.026 and 0.016 rtol off,
+#: 0.27 of it 0.24 rtol
+ONSET_CENTRE_TOL = 0.05
+ONSET_CENTRE_PASSES = 3
+#: a graded row whose estimate misses rtol mostly through its diffusion solves tightens
+#: them (by CROSSING_INNER_DIV) at most this many times before it refines the zeta grid
+INNER_TIGHTENINGS = 2
+#: the probe of the fixed point's amplification (see _ZetaLadder._probe_inner): the factor
+#: of its diffusion tolerance over (or under) the row's; the factor by which the measured inner error e
+#: is charged to the returned value (4 a2 - a1)/3, whose levels carry errors of e's size
+#: but not the same ones (the schedules' resolution choices differ): (4 e + e)/3; rows whose
+#: diffusion estimate is below rtol A over INNER_PROBE_SKIP are not probed (amplified 30x it
+#: stays below rtol A / 10)
+INNER_PROBE_FACTOR = 4.0
+INNER_PROBE_SAFETY = 5.0 / 3.0
+INNER_PROBE_SKIP = 300.0
+INNER_PROBE_SATURATED = 0.25
+#: kernel flags that only say a diffusion solve missed its own (tighter) tolerance or reached
+#: its node cap: its error estimate is part of the row's, which decides the row's flag
+ACCURACY_FLAGS = (RTOL_NOT_MET, GRID_CAP)
 
 def _ladder_estimate(a0, a1, a2, ok0):
     """Error estimate of R = (4 a2 - a1)/3 (the end area extrapolated from the two finest
@@ -274,71 +328,186 @@ class _ZetaLadder:
     ``ZETA_EXTRA_LEVELS``, and then, if still above, status RTOL_NOT_MET. Each level starts
     from level 1's detachment stress (level 0 at its nodes, level 2 interpolated in ln
     zeta), level k > 2 from level k - 1's; level 1 from the given start or full contact.
+
+    With ``graded`` (the default of :func:`solve_contact`), a pressure whose gamma_eff
+    changes sign on level 1 gets grids of its own, graded around the sign change
+    (:func:`persson_fast.zeta_grid.onset_grid`): sigma_a starts there as a square root, which
+    a grid of even cells in ln zeta resolves at order 1-1.5 only, with an error constant
+    that depends on where the sign change falls between the nodes (the ladder can then look
+    asymptotic and be off by several times its estimate). On the graded grids the wall is
+    linear between the nodes as everywhere else, and the ladder converges at order 2
+    again. Every row's solution is kept on its own grids; the profiles are reported on
+    the standard level-1 nodes.
     """
 
-    def __init__(self, zeta, n_p, solve):
+    def __init__(self, zeta, n_p, solve, breakpoints=None, graded=False):
         self.zeta = zeta
         self.n_p = n_p
         self.solve_fn = solve
         z0, self.idx0 = coarsen_zeta(zeta)
-        self.grids = [z0, zeta, refine_zeta(zeta)]
-        self.levels = []          # per level: outs (8 arrays (n_p, n_k), nan where unsolved), status
+        self.std = [z0, zeta, refine_zeta(zeta)]
+        self.bp = (np.array([zeta[0], zeta[-1]]) if breakpoints is None
+                   else np.asarray(breakpoints, dtype=float))
+        self.graded = graded
+        self.onset = [None] * n_p      # per row: the Onset (interval, cells) of its grids
+        self._centred = {}             # (row, level) -> that Onset centred on the level's own
+        self._grids = {}               # (row, level) -> the graded grid of an onset row
+        self.sol = []                  # per level, per row: (outputs (8 or 10 arrays), status)
         self.last = np.full(n_p, 2, dtype=np.int64)
         self.iterations = np.zeros(n_p, dtype=np.int64)
         self.residual = np.zeros(n_p)
         self.max_extra = 0
-        self.G_dim = None
         self.inner_div = np.ones(n_p)   # per pressure: rtol / (its diffusion tolerance)
+        self.late = np.zeros(n_p, dtype=bool)   # a late sign change of gamma_eff on level 1
+        self.amplification = np.zeros(n_p)      # measured by _probe_inner (0: not probed)
 
-    def _solve_level(self, k, rows, start_pa):
-        grid = self.grids[k]
-        outs, status, iterations, residual, G_dim = self.solve_fn(grid, start_pa, rows,
-                                                                 self.inner_div[rows])
-        if k == 1:
-            self.G_dim = G_dim
-        if k >= len(self.levels):
-            self.levels.extend([None] * (k + 1 - len(self.levels)))
-        if self.levels[k] is None:
-            self.levels[k] = ([np.full((self.n_p, grid.size), np.nan) for _ in outs],
-                              np.zeros(self.n_p, dtype=np.int64))
-        full, st_full = self.levels[k]
-        for f_, o in zip(full, outs):
-            f_[rows] = o
-        st_full[rows] = status
+    def standard(self, k):
+        """The standard grid of level k (refined as needed)."""
+        while len(self.std) <= k:
+            self.std.append(refine_zeta(self.std[-1]))
+        return self.std[k]
+
+    def level_onset(self, r, k):
+        """Row r's Onset on level k (centred on that level's own sign change), or None."""
+        return self._centred.get((r, k), self.onset[r])
+
+    def grid(self, r, k):
+        """Row r's grid of level k: the standard one, or graded around its onset."""
+        o = self.level_onset(r, k)
+        if o is None:
+            return self.standard(k)
+        g = self._grids.get((r, k))
+        if g is None:
+            g = self._grids[(r, k)] = onset_grid(self.standard(k), o, k)
+        return g
+
+    def _centre(self, r, k, u):
+        """Centre row r's level-k grid on the sign change at ln zeta = u (a new interval
+        around it where u lies outside the row's)."""
+        o = self.onset[r]
+        if o is None or not o.u_a < u < o.u_b:
+            o = self.onset[r] = onset_at(np.exp(u), self.std[0], self.bp)
+            for key in [key for key in self._centred if key[0] == r]:
+                del self._centred[key]
+                self._grids.pop(key, None)
+        self._centred[(r, k)] = o.centred(np.exp(u))
+        self._grids.pop((r, k), None)
+
+    def coordinate(self, r, k, zeta=None):
+        """Points ``zeta`` (default: row r's level-k nodes) in the coordinate of
+        :func:`onset_coordinate` of row r's level k."""
+        return onset_coordinate(self.grid(r, k) if zeta is None else zeta,
+                                self.level_onset(r, k))
+
+    def _solve_level(self, k, rows, starts):
+        """Solve level k of ``rows`` from ``starts`` (per row: detachment stresses [Pa] on
+        its grid, or None for full contact)."""
+        rows = np.asarray(rows, dtype=np.int64)
+        grids = [self.grid(r, k) for r in rows]
+        outs, n_z, status, iterations, residual = self.solve_fn(grids, starts, rows,
+                                                               self.inner_div[rows])
+        while len(self.sol) <= k:
+            self.sol.append([None] * self.n_p)
+        for i, r in enumerate(rows):
+            self.sol[k][r] = ([o[i, :n_z[i]] for o in outs], int(status[i]))
         self.iterations[rows] += iterations
         self.residual[rows] = np.maximum(self.residual[rows], residual)
         return status
 
+    def _ok(self, k, r):
+        entry = self.sol[k][r] if k < len(self.sol) else None
+        return entry is not None and entry[1] == 0 and bool(np.all(np.isfinite(entry[0][1])))
+
     def _start_from(self, k, rows):
         """Start of level k + 1 from level k's detachment stress (full contact where level k
-        failed): level k's values at its own nodes and their cubic interpolant in ln zeta
-        between them (:func:`_midpoints_cubic`), plus, where level k - 1 is solved too, the
-        change to the finer level that second-order convergence predicts, (x_k - x_k-1)/4
-        (linear in ln zeta). Only the start: the fixed point's stop is the same, but from
-        it the seed scene's level 2 takes 4.1 iterations instead of 5.1 (linear
-        interpolation alone), at rtol 1e-6."""
-        outs, status = self.levels[k]
-        z_from, z_to = self.grids[k], self.grids[k + 1]
-        lz_from, lz_to = np.log(z_from), np.log(z_to)
-        if z_to.size == 2 * z_from.size - 1 and np.array_equal(z_to[0::2], z_from):
-            start = _midpoints_cubic(lz_from, outs[1][rows])
-        else:
-            start = np.array([np.interp(lz_to, lz_from, outs[1][r]) for r in rows])
-        start = start.reshape(rows.size, z_to.size)
-        regular = bool(np.all(np.diff(z_to) > NARROW_CELL_RTOL * z_to[:-1]))
-        # (not on a grid with cells a few ulps wide, a user's: the change, interpolated
-        # across such a cell, would make the wall jump where G is flat)
-        if regular and k >= 1 and self.levels[k - 1] is not None:
-            outs_c, status_c = self.levels[k - 1]
-            lz_c = np.log(self.grids[k - 1])
-            for i, r in enumerate(rows):
-                x_c = outs_c[1][r]
-                if status_c[r] != 0 or not np.all(np.isfinite(x_c)):
+        failed): level k's values at its own nodes and their cubic interpolant between them
+        (:func:`_midpoints_cubic`, in the row's :func:`onset_coordinate`), plus, where level
+        k - 1 is solved too, the change to the finer level that second-order convergence
+        predicts, (x_k - x_k-1)/4 (linear in that coordinate). Only the start: the fixed
+        point's stop is the same, but from it the seed scene's level 2 takes 4.1 iterations
+        instead of 5.1 (linear interpolation alone), at rtol 1e-6."""
+        starts = []
+        for r in rows:
+            if not self._ok(k, r):
+                starts.append(None)
+                continue
+            x = self.sol[k][r][0][1]
+            z_from, z_to = self.grid(r, k), self.grid(r, k + 1)
+            v_from, v_to = self.coordinate(r, k), self.coordinate(r, k, z_to)
+            if z_to.size == 2 * z_from.size - 1 and np.array_equal(z_to[0::2], z_from):
+                start = _midpoints_cubic(v_from, x[None, :])[0]
+            else:
+                start = np.interp(v_to, v_from, x)
+            regular = bool(np.all(np.diff(z_to) > NARROW_CELL_RTOL * z_to[:-1]))
+            # (not on a grid with cells a few ulps wide, a user's: the change, interpolated
+            # across such a cell, would make the wall jump where G is flat)
+            if regular and k >= 1 and self._ok(k - 1, r):
+                z_c = self.grid(r, k - 1)
+                v_c = self.coordinate(r, k - 1)
+                change = (np.interp(self.coordinate(r, k, z_c), v_from, x)
+                          - self.sol[k - 1][r][0][1]) / 4.0
+                start = np.maximum(start + np.interp(self.coordinate(r, k - 1, z_to), v_c,
+                                                     change), 0.0)
+            starts.append(start)
+        return starts
+
+    def _crossing(self, k, r):
+        """ln zeta where row r's gamma_eff on level k changes sign (g linear in ln zeta in
+        the cell), or None (no sign change, or more than one)."""
+        entry = self.sol[k][r]
+        if entry is None:
+            return None
+        g = entry[0][2]
+        cells = np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
+        if cells.size != 1:
+            return None
+        i = int(cells[0])
+        u = np.log(self.grid(r, k))
+        return float(u[i] + (u[i + 1] - u[i]) * g[i] / (g[i] - g[i + 1]))
+
+    def _solve_centred(self, k, rows, starts):
+        """Solve level k of ``rows``; a row with an onset is solved again, from its last
+        solution, on a grid centred on the sign change of that solution while it lies more
+        than ``ONSET_CENTRE_TOL`` of the level's narrowest graded cell away from the centre
+        (at most ``ONSET_CENTRE_PASSES`` times). Each level is graded around its own sign
+        change: the error of a level then follows the grid's spacing alone, as the ladder's
+        extrapolation assumes (with one centre for all levels its share of a cell changes
+        4x per level, and the end area erred by up to 0.24 rtol for a centre a quarter of
+        level 2's narrowest cell off)."""
+        self._solve_level(k, rows, starts)
+        todo = [r for r in rows if self.onset[r] is not None]
+        for _ in range(ONSET_CENTRE_PASSES):
+            redo, starts = [], []
+            for r in todo:
+                u = self._crossing(k, r)
+                o = self.level_onset(r, k)
+                if u is None or abs(u - o.u_star) <= ONSET_CENTRE_TOL * o.first_cell(k):
                     continue
-                change = (np.interp(lz_c, lz_from, outs[1][r]) - x_c) / 4.0
-                start[i] = np.maximum(start[i] + np.interp(lz_to, lz_c, change), 0.0)
-        start[status[rows] != 0] = -np.inf
-        return start
+                v_old, x_old = self.coordinate(r, k), self.sol[k][r][0][1]
+                ok = self._ok(k, r)
+                self._centre(r, k, u)
+                redo.append(r)
+                starts.append(np.interp(self.coordinate(r, k, self.grid(r, k)), v_old, x_old)
+                              if ok else None)
+            if not redo:
+                return
+            self._solve_level(k, np.array(redo), starts)
+            todo = redo
+
+    def _predict_centre(self, k, rows):
+        """Centre the graded rows' level k on their predicted sign change: that of level
+        k - 1 plus the second-order change from level k - 2 to k - 1, (u_k-1 - u_k-2)/4
+        (level 0: level 1's)."""
+        for r in rows:
+            if self.onset[r] is None:
+                continue
+            prev = [self._crossing(j, r) for j in ((1,) if k == 0 else (k - 1, k - 2))]
+            if prev[0] is None:
+                continue
+            u = prev[0]
+            if len(prev) > 1 and prev[1] is not None:
+                u += (prev[0] - prev[1]) / 4.0
+            self._centre(r, k, u)
 
     def solve(self, start):
         rows = np.arange(self.n_p)
@@ -347,49 +516,115 @@ class _ZetaLadder:
         # sticky, end on a contact area of 1e-13 instead of the separated state); level 0
         # starts from level 1's profile at its nodes (about half the iterations of a start
         # from full contact), level 2 from level 1's profile interpolated
-        self.levels = [None, None]
-        self._solve_level(1, rows, start)
-        # a late sign change of gamma_eff: the level again with the tighter diffusion
-        # tolerance, from its own profile (CROSSING_LATE, CROSSING_INNER_DIV)
-        cross = np.array([self.levels[1][1][r] == 0 and self._late_crossing(r)
-                          for r in rows], dtype=bool)
-        if cross.any():
-            again = rows[cross]
-            self.inner_div[again] = CROSSING_INNER_DIV
-            self._solve_level(1, again, self.levels[1][0][1][again].copy())
-        outs1, status1 = self.levels[1]
-        start0 = outs1[1][:, self.idx0].copy()
-        start0[status1 != 0] = -np.inf
-        self._solve_level(0, rows, start0)
-        self._solve_level(2, rows, self._start_from(1, rows))
+        self._solve_level(1, rows, [None if start is None else start[r] for r in rows])
+        # a late sign change of gamma_eff: the diffusion tolerance is tightened from here on
+        # (CROSSING_LATE, CROSSING_INNER_DIV)
+        late = [r for r in rows if self.sol[1][r][1] == 0 and self._late_crossing(r)]
+        self.late[late] = True
+        graded = []
+        if self.graded:
+            for r in rows:
+                u = self._crossing(1, r)
+                if u is not None and 0.0 < u < np.log(self.zeta[-1]):
+                    graded.append(r)
+                    v_old, x_old = self.coordinate(r, 1), self.sol[1][r][0][1]
+                    self._centre(r, 1, u)
+            if graded:
+                self._solve_centred(1, np.array(graded), [
+                    np.interp(self.coordinate(r, 1, self.grid(r, 1)),
+                              onset_coordinate(self.standard(1), None), self.sol[1][r][0][1])
+                    for r in graded])
+        # (an ungraded row: its diffusions to rtol / CROSSING_INNER_DIV from here on; a graded
+        # row tightens them only where its estimate asks for it, see refine_until)
+        late = [r for r in late if r not in graded]
+        self.inner_div[late] = CROSSING_INNER_DIV
+        if late:
+            self._solve_level(1, np.array(late), [self.sol[1][r][0][1].copy() for r in late])
+        self._predict_centre(0, rows)
+        starts0 = []
+        for r in rows:
+            if self._ok(1, r):
+                starts0.append(np.interp(self.coordinate(r, 1, self.grid(r, 0)),
+                                         self.coordinate(r, 1), self.sol[1][r][0][1]))
+            else:
+                starts0.append(None)
+        self._solve_centred(0, rows, starts0)
+        self._predict_centre(2, rows)
+        self._solve_centred(2, rows, self._start_from(1, rows))
+        self._probe_inner(rows)
 
-    def _ends(self, k):
-        return self.levels[k][0][0][:, -1]
+    def _probe_inner(self, rows):
+        """Measure by how much the fixed point amplifies its diffusion solves' errors in the
+        end area: level 0 again with the diffusions INNER_PROBE_FACTOR (F) times looser
+        (cheaper; from its own solution; the level keeps its first solution): the change of
+        the end area over F - 1 is the error the solves at the row's tolerance make in it;
+        over the diffusion's own estimate of the end area, the amplification
+        (``self.amplification``, at least 1), which the estimate of every level's diffusion
+        error is then charged with. Where the looser solves change the end area by less
+        than INNER_PROBE_SATURATED of that estimate (both tolerances then reached the
+        kernel's coarsest resolution), the level again F times tighter instead: the change
+        times F / (F - 1). A sign change of gamma_eff amplifies most: a diffusion error
+        moves the sign change and with it the end area (measured on a self-affine scene,
+        H 0.89: 17x). Rows whose diffusion estimate could not matter even amplified (below
+        rtol A / INNER_PROBE_SKIP) are not probed. Level 0's own diffusion error differs
+        from the finer levels' (their schedules force other steps), the amplification is
+        the fixed point's."""
+        sel = [r for r in rows if self._ok(0, r) and self._end(0, r) > 0.0
+               and abs(self.sol[0][r][0][7][-1]) * INNER_PROBE_SKIP
+               > self.rtol * self._end(0, r) + 1e-12]
+        f = INNER_PROBE_FACTOR
+        for factor, scale in ((1.0 / f, 1.0 / (f - 1.0)), (f, f / (f - 1.0))):
+            if not sel:
+                return
+            sel = np.array(sel, dtype=np.int64)
+            kept = [self.sol[0][r] for r in sel]
+            self.inner_div[sel] *= factor
+            self._solve_level(0, sel, [self.sol[0][r][0][1].copy() for r in sel])
+            self.inner_div[sel] /= factor
+            again = []
+            for i, r in enumerate(sel):
+                probe = self.sol[0][r]
+                self.sol[0][r] = kept[i]
+                if probe[1] != 0:
+                    continue
+                change = abs(kept[i][0][0][-1] - probe[0][0][-1])
+                own = abs(kept[i][0][7][-1])
+                if factor < 1.0 and change < INNER_PROBE_SATURATED * own:
+                    again.append(r)
+                    continue
+                self.amplification[r] = max(1.0, change * scale / own) if own > 0 else 1.0
+            sel = again
+
+    def _end(self, k, r):
+        return self.sol[k][r][0][0][-1]
 
     def _end_estimate(self):
         """Estimate of the end area's zeta-grid error per pressure, the split mask (one of
         the two finest levels separated, the other in contact: no extrapolation) and the
         returned end area. The estimate includes the inner (diffusion) error estimate of the
-        finest level's end area."""
+        finest level's end area (``self.inner``)."""
         n = np.arange(self.n_p)
         K = self.last
-        a2 = np.array([self._ends(K[r])[r] for r in n])
-        a1 = np.array([self._ends(K[r] - 1)[r] for r in n])
-        a0 = np.array([self._ends(K[r] - 2)[r] for r in n])
-        ok0 = np.array([self.levels[K[r] - 2][1][r] == 0 for r in n]) & np.isfinite(a0)
+        a2 = np.array([self._end(K[r], r) for r in n])
+        a1 = np.array([self._end(K[r] - 1, r) for r in n])
+        a0 = np.array([self._end(K[r] - 2, r) for r in n])
+        ok0 = np.array([self.sol[K[r] - 2][r][1] == 0 for r in n]) & np.isfinite(a0)
         ok0 &= (a0 > 0) == (a1 > 0)
-        resolved = np.array([self._crossing_resolved(K[r] - 2, r) for r in n])
+        graded = np.array([o is not None for o in self.onset], dtype=bool)
+        # an ungraded sign change (pull_off's discretisation, or one that appears on
+        # another level than 1) keeps the rules of the even grid below
+        resolved = np.array([graded[r] or self._crossing_resolved(K[r] - 2, r) for r in n])
         ok0 &= resolved
         split = (a1 > 0) != (a2 > 0)
         est = np.where(split, np.abs(a2 - a1), _ladder_estimate(a0, a1, a2, ok0))
-        # after a square-root onset of sigma_a the extrapolated value converges at an order
-        # near 1.5 with a constant that depends on where the sign change falls between the
-        # nodes: its ladder can look asymptotic and still be off by several times the ladder
-        # estimate (measured: 0.17x at rtol 1e-5); there the last un-extrapolated difference
-        # bounds the estimate from below: the error of the finest un-extrapolated value at
-        # order 1.5, |a2 - a1| / (2^1.5 - 1), which the extrapolated value betters (measured
-        # 2-5x the error of the returned value)
-        crossing = np.array([self._has_crossing(K[r], r) for r in n])
+        # after a square-root onset of sigma_a on an even grid the extrapolated value
+        # converges at an order near 1.5 with a constant that depends on where the sign
+        # change falls between the nodes: its ladder can look asymptotic and still be off by
+        # several times the ladder estimate (measured: 0.17x at rtol 1e-5); there the last
+        # un-extrapolated difference bounds the estimate from below: the error of the finest
+        # un-extrapolated value at order 1.5, |a2 - a1| / (2^1.5 - 1), which the
+        # extrapolated value betters (measured 2-5x the error of the returned value)
+        crossing = np.array([not graded[r] and self._has_crossing(K[r], r) for r in n])
         est = np.where(crossing, np.maximum(est, np.abs(a2 - a1) / (2.0 ** 1.5 - 1.0)), est)
         area = np.where(split, a2, np.clip((4.0 * a2 - a1) / 3.0, 0.0, 1.0))
         # an area falling towards 0 whose extrapolation clips to 0 (contact vanishing as the
@@ -400,16 +635,20 @@ class _ZetaLadder:
         # ladder says little (measured: an estimate 0.38x the error on a tabulated spectrum);
         # such a row is refined, and flagged if the work cap leaves it unresolved
         self.unresolved = ~resolved & ~split & ~vanishing
-        est = np.where(self.unresolved, np.maximum(est, np.maximum(np.abs(a1 - a0), np.abs(a2 - a1))),
-                       est)
-        inner = np.array([abs(self.levels[K[r]][0][7][r, -1]) for r in n])
-        inner = np.where(self.inner_div > 1.0, CROSSING_INNER_MARGIN * inner, inner)
+        est = np.where(self.unresolved,
+                       np.maximum(est, np.maximum(np.abs(a1 - a0), np.abs(a2 - a1))), est)
+        inner = np.array([abs(self.sol[K[r]][r][0][7][-1]) for r in n])
+        probed = self.amplification > 0.0
+        inner = np.where(probed, INNER_PROBE_SAFETY * self.amplification * inner,
+                         np.where(self.late, CROSSING_INNER_MARGIN * inner, inner))
+        self.ladder_part = np.where(vanishing, np.minimum(est, a2), est)
+        self.inner = inner
         est = np.where(vanishing, np.minimum(est + inner, a2), est + inner)
         return est, split, area
 
     def _crossing_cells(self, k, r):
         """The cells of level k where row r's gamma_eff changes sign."""
-        g = self.levels[k][0][2][r]
+        g = self.sol[k][r][0][2]
         return np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
 
     def _has_crossing(self, k, r):
@@ -427,45 +666,94 @@ class _ZetaLadder:
         cells = self._crossing_cells(k, r)
         if cells.size == 0:
             return True
-        z = self.grids[k]
+        z = self.grid(r, k)
         width = np.log10(z[cells + 1] / z[cells])
         return bool(np.all(width <= 1.01 / CROSSING_MIN_PER_DECADE))
 
     def _status_of(self, r):
-        s2 = self.levels[self.last[r]][1][r]
-        s1 = self.levels[self.last[r] - 1][1][r]
+        s2 = self.sol[self.last[r]][r][1]
+        s1 = self.sol[self.last[r] - 1][r][1]
         return s2 if s2 != 0 else s1
 
+    def _statuses(self, est, area, rtol):
+        """The status per pressure: that of the two finest levels' solves, except that a
+        diffusion solve that missed its (tighter) tolerance or reached its node cap is not a
+        flag of its own: its estimate is part of ``est``, and a row whose ``est`` exceeds
+        rtol A (or whose sign change stays unresolved) is RTOL_NOT_MET."""
+        status = np.array([self._status_of(r) for r in range(self.n_p)], dtype=np.int64)
+        status[np.isin(status, ACCURACY_FLAGS)] = 0
+        miss = (est > rtol * area + 1e-12) | self.unresolved
+        status[(status == 0) & miss] = RTOL_NOT_MET
+        return status
+
     def refine_until(self, rtol):
-        for extra in range(1, ZETA_EXTRA_LEVELS + 1):
+        """Refine the rows whose estimate misses rtol A: where the diffusion solves' share
+        of the estimate (charged with the fixed point's amplification) is the larger, the
+        row solves its three finest levels again with a diffusion tolerance
+        CROSSING_INNER_DIV times tighter (at most ``INNER_TIGHTENINGS`` times); else a
+        finer zeta level (at most ``ZETA_EXTRA_LEVELS``)."""
+        tightened = 0
+        extra = 0
+        while True:
             est, _, area = self._end_estimate()
-            status = np.array([self._status_of(r) for r in range(self.n_p)])
-            rows = np.flatnonzero((status == 0) & ((est > rtol * area + 1e-12) | self.unresolved))
+            status = self._statuses(est, area, rtol)
+            rows = np.flatnonzero(status == RTOL_NOT_MET)
             if rows.size == 0:
                 break
+            inner_led = self.inner[rows] >= self.ladder_part[rows]
+            if tightened < INNER_TIGHTENINGS and np.any(inner_led):
+                tightened += 1
+                sel = rows[inner_led]
+                self.inner_div[sel] *= CROSSING_INNER_DIV
+                for back in (2, 1, 0):
+                    for k in np.unique(self.last[sel] - back):
+                        at = sel[self.last[sel] - back == k]
+                        self._solve_centred(k, at, [self.sol[k][r][0][1].copy()
+                                                    if self._ok(k, r) else None for r in at])
+                continue
+            rows = rows[~inner_led | (tightened >= INNER_TIGHTENINGS)]
+            if extra >= ZETA_EXTRA_LEVELS or rows.size == 0:
+                break
+            extra += 1
             k = 2 + extra
-            if len(self.grids) <= k:
-                self.grids.append(refine_zeta(self.grids[-1]))
-            self._solve_level(k, rows, self._start_from(k - 1, rows))
+            rows = rows[self.last[rows] == k - 1]
+            self._predict_centre(k, rows)
+            self._solve_centred(k, rows, self._start_from(k - 1, rows))
             self.last[rows] = k
             self.max_extra = extra
         est, _, area = self._end_estimate()
-        self.status = np.array([self._status_of(r) for r in range(self.n_p)], dtype=np.int64)
-        self.status[(self.status == 0) & ((est > rtol * area + 1e-12) | self.unresolved)] = RTOL_NOT_MET
+        self.status = self._statuses(est, area, rtol)
+
+    def _on_zeta(self, k, r):
+        """Row r's level-k outputs at the result's nodes (level 1 of the standard grids):
+        the nodes its grid shares with them, and the cubic interpolant (in its
+        :func:`onset_coordinate`) at those that an onset grid replaced."""
+        outs = self.sol[k][r][0]
+        if self.onset[r] is None:
+            return [o[::2 ** (k - 1)] for o in outs]
+        z = self.grid(r, k)
+        i = np.minimum(np.searchsorted(z, self.zeta), z.size - 1)
+        exact = z[i] == self.zeta
+        stacked = np.array(outs)
+        res = stacked[:, i]
+        if not np.all(exact):
+            res[:, ~exact] = _cubic_at(self.coordinate(r, k), stacked,
+                                       self.coordinate(r, k, self.zeta[~exact]))
+        return list(res)
 
     def profiles(self):
         """Profiles on the level-1 nodes: the extrapolation of the two finest levels of each
         pressure (the finer alone where one of them separated), and the error estimates."""
         n_z = self.zeta.size
-        n_out = len(self.levels[1][0])
+        n_out = len(self.sol[1][0][0])
         res = [np.zeros((self.n_p, n_z)) for _ in range(n_out)]
         err = np.zeros((self.n_p, n_z))
         zeta_err = np.zeros(self.n_p)
         est, split, _ = self._end_estimate()
         for r in range(self.n_p):
             K = self.last[r]
-            fine = [o[r, ::2 ** (K - 1)] for o in self.levels[K][0]]
-            prev = [o[r, ::2 ** (K - 2)] for o in self.levels[K - 1][0]]
+            fine = self._on_zeta(K, r)
+            prev = self._on_zeta(K - 1, r)
             for j in range(n_out):
                 res[j][r] = fine[j] if split[r] else (4.0 * fine[j] - prev[j]) / 3.0
             # an extrapolated profile outside [0, 1] is a zeta-grid error: clip it and charge
@@ -483,6 +771,50 @@ class _ZetaLadder:
         if n_out > 8:                 # the plastic area and load (a yield wall)
             res[8] = np.clip(res[8], 0.0, area_z)
         return (area_z, sa, g, u, load, det_a, det_l, err, zeta_err) + tuple(res[8:])
+
+
+def _cubic_at(v, y, t):
+    """The cubic Lagrange interpolant of the rows of y (n_rows, n) on the increasing nodes v
+    at the points t, from the four nodes around each (the two end cells: linear)."""
+    n = v.size
+    j = np.clip(np.searchsorted(v, t) - 1, 0, n - 2)
+    lam = (t - v[j]) / (v[j + 1] - v[j])
+    out = y[:, j] + (y[:, j + 1] - y[:, j]) * lam
+    inner = (j >= 1) & (j <= n - 3)
+    if n >= 4 and np.any(inner):
+        jj, tt = j[inner], t[inner]
+        nodes = [jj - 1, jj, jj + 1, jj + 2]
+        val = np.zeros((y.shape[0], jj.size))
+        for a in range(4):
+            w = np.ones(jj.size)
+            for b in range(4):
+                if a != b:
+                    w *= (tt - v[nodes[b]]) / (v[nodes[a]] - v[nodes[b]])
+            val += w * y[:, nodes[a]]
+        out[:, inner] = val
+    return out
+
+
+def _breakpoints(surface, zeta):
+    """The spectrum's breakpoints on the zeta axis (with 1 and zeta1), merged as in
+    :func:`adhesion_zeta`: an onset grid never grades across one."""
+    return _merged_breakpoints(np.asarray(surface.breakpoints(), dtype=float) / surface.q0,
+                               float(zeta[-1]))
+
+
+def _miss_message(ladder, p, area, rtol):
+    """What the rows flagged RTOL_NOT_MET missed, in the user's terms: the worst one's
+    estimated error of A/A0 against rtol A, split into the zeta grid's part and that of
+    the diffusion solves and the fixed point's last change."""
+    bad = np.flatnonzero(ladder.status == RTOL_NOT_MET)
+    est = ladder.ladder_part + ladder.inner
+    rel = est[bad] / np.maximum(rtol * area[bad] + 1e-12, 1e-300)
+    r = int(bad[np.argmax(rel)])
+    return (f"; estimated error of A/A0 up to {rel.max():.3g}x the tolerance rtol A + 1e-12 "
+            f"(rtol {rtol:.3g}), worst at p = {p[r]:.6g} Pa: A = {area[r]:.6g}, estimated "
+            f"error {est[r]:.3g} of which the zeta grid {ladder.ladder_part[r]:.3g} (refined "
+            f"{ladder.last[r] - 2} of {ZETA_EXTRA_LEVELS} times) and the diffusion solves and "
+            f"fixed-point iteration {ladder.inner[r]:.3g}")
 
 
 def yield_wall_on(hardness, zeta) -> np.ndarray:
@@ -557,38 +889,36 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
     theory_g = 1.0 if theory_gamma is None else float(theory_gamma)
     timings = {}
 
-    def fixed_point(grid, start_pa, rows, inner_div):
-        G, c, wa, wb, scale, G_dim = _scene_arrays(surface, grid, e_star, work_of_adhesion,
+    scale, G_dim = _scene_arrays(surface, zeta, e_star, work_of_adhesion,
+                                 detachment_prefactor)[4:]
+
+    def fixed_point(grids, starts, rows, inner_div):
+        """The fixed point of ``rows`` on their grids (one per row) from ``starts`` (per
+        row: sigma_a [Pa] on its grid, or None for full contact): the outputs (n_rows,
+        n_max) in Pa where they are stresses, the number of nodes per row, status,
+        iterations and residual."""
+        G, c, wa, wb, n_z, _, G_dims = _scene_rows(surface, grids, e_star, work_of_adhesion,
                                                    detachment_prefactor)
-        x_init = None if start_pa is None else start_pa / scale
-        sy = None
-        if hardness is not None:
-            sy = np.broadcast_to(yield_wall_on(hardness, grid), (rows.size, grid.size)).copy()
-            # a yield wall the distribution cannot reach (reflection-principle bound without
-            # the detachment wall, which only removes mass): solved without it (inf)
-            far = yield_wall_reach(G_dim, p[rows], sy) <= FAR_MASS
-            sy[far] = np.inf
-            sy = sy / scale
-        # one call per diffusion tolerance (the rows of a late sign change of gamma_eff take
-        # a tighter one); a pressure's result does not depend on the others in its call
-        outs = None
-        status = np.zeros(rows.size, dtype=np.int64)
-        iterations = np.zeros(rows.size, dtype=np.int64)
-        residual = np.zeros(rows.size)
-        for div in np.unique(inner_div):
-            sel = np.flatnonzero(inner_div == div)
-            o_p, status[sel], iterations[sel], residual[sel], tim = _run(
-                G, c, wa, wb, gamma_s, p[rows][sel] / scale, rtol / div, parallel, ctl,
-                None if x_init is None else x_init[sel], variant, onset, theory_code,
-                theory_g, None if sy is None else sy[sel])
-            if outs is None:
-                outs = [np.zeros((rows.size, grid.size)) for _ in o_p]
-            for full, o in zip(outs, o_p):
-                full[sel] = o
-            for key, val in tim.items():
-                timings[key] = timings.get(key, 0.0) + val
+        n_max = int(n_z.max())
+        x_init = np.full((rows.size, n_max), -1.0)
+        sy = None if hardness is None else np.full((rows.size, n_max), np.inf)
+        for i, grid in enumerate(grids):
+            n = grid.size
+            if starts[i] is not None:
+                x_init[i, :n] = starts[i] / scale
+            if hardness is not None:
+                sy_i = yield_wall_on(hardness, grid)
+                # a yield wall the distribution cannot reach (reflection-principle bound
+                # without the detachment wall, which only removes mass): solved without it
+                if yield_wall_reach(G_dims[i], p[rows[i]:rows[i] + 1], sy_i[None, :])[0] > FAR_MASS:
+                    sy[i, :n] = sy_i / scale
+        outs, status, iterations, residual, tim = _run(
+            G, c, wa, wb, gamma_s, p[rows] / scale, rtol / inner_div, parallel, ctl, x_init,
+            variant, False, theory_code, theory_g, sy, n_z)
+        for key, val in tim.items():
+            timings[key] = timings.get(key, 0.0) + val
         outs = [o * (scale if k in (1, 4, 6, 9) else 1.0) for k, o in enumerate(outs)]
-        return outs, status, iterations, residual, G_dim
+        return outs, n_z, status, iterations, residual
 
     if start is not None:
         start = np.array(start, dtype=float)
@@ -597,22 +927,20 @@ def solve_adhesive_contact(surface, pressure, zeta, *, e_star, work_of_adhesion,
                              f"[Pa] (detachment stresses on the zeta grid); got shape "
                              f"{start.shape}")
         start = np.broadcast_to(start, (p.size, zeta.size)).copy()
-    ladder = _ZetaLadder(zeta, p.size, fixed_point)
+    ladder = _ZetaLadder(zeta, p.size, fixed_point, _breakpoints(surface, zeta), graded=onset)
+    ladder.G_dim = G_dim
+    ladder.rtol = rtol
     ladder.solve(start)
     ladder.refine_until(rtol)
     area_z, sa, g, u, load, det_a, det_l, err, zeta_err, *plastic = ladder.profiles()
     status, iterations, residual = ladder.status, ladder.iterations, ladder.residual
-    G_dim = ladder.G_dim
     area = area_z[:, -1].copy()
     success, message = summarize_status(status)
     if np.any(status == NOT_CONVERGED):
         bad = np.flatnonzero(status == NOT_CONVERGED)
         message += f"; largest fixed-point residual {residual[bad].max():.3g} after {iterations[bad].max()} iterations"
     if np.any(status == RTOL_NOT_MET):
-        bad = np.flatnonzero(status == RTOL_NOT_MET)
-        rel = err[bad, -1] / np.maximum(area[bad], 1e-300)
-        message += (f"; zeta grid refined {ladder.max_extra} times, estimated relative error of "
-                    f"the area up to {rel.max():.3g} (rtol {rtol:.3g})")
+        message += _miss_message(ladder, p, area, rtol)
     return ContactResult(
         pressure=p, area=area, zeta=zeta, G=G_dim, area_zeta=area_z, sigma_a=sa,
         gamma_eff=g * work_of_adhesion, load=load[:, -1].copy(),

@@ -249,8 +249,8 @@ def test_ladder_start_interpolates_cubically_and_predicts_the_finer_level():
     g = lambda z: 3.0 + 0.5 * np.log(z)                        # noqa: E731
     h = [1.0, 0.5, 0.25]
     ladder = _ZetaLadder(z1, 1, None)
-    ladder.grids = grids
-    ladder.levels = [([np.zeros((1, z.size)), (f(z) + h[k] ** 2 * g(z))[None, :]],
-                      np.zeros(1, dtype=np.int64)) for k, z in enumerate(grids[:2])]
+    ladder.std = grids
+    ladder.sol = [[([np.zeros(z.size), f(z) + h[k] ** 2 * g(z)], 0)]
+                  for k, z in enumerate(grids[:2])]
     start = ladder._start_from(1, np.arange(1))[0]
     np.testing.assert_allclose(start, f(grids[2]) + h[2] ** 2 * g(grids[2]), rtol=1e-13)

@@ -810,20 +810,24 @@ FIXED_POINT_SIGNATURE = types.Tuple((types.int64, types.int64, types.float64))(
     types.float64, _A, _A, _A)
 
 
-def _adhesive_sweep(fixed_point, step, grid, variant, G, c, wa, wb, gamma_s, pressures, rtol,
-                    n_damp, max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load,
+def _adhesive_sweep(fixed_point, step, grid, variant, G, c, wa, wb, n_z, gamma_s, pressures,
+                    rtol, n_damp, max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load,
                     det_area, det_load, error, status, iterations, residual, onset, theory,
                     theory_gamma, sy, pl, pl_load):
     """All pressures through :func:`_fixed_point` (``fixed_point``) with the diffusion solve
-    ``step`` and the grid solver ``grid``; x_init and outputs (n_p, n_z),
-    status/iterations/residual (n_p,); a yield wall sy (n_p, n_z) with the outputs pl,
-    pl_load (n_p, n_z), or without one, sy, pl and pl_load (n_p, 0)."""
+    ``step`` and the grid solver ``grid``. Every row has a zeta grid of its own: G, c, x_init
+    and the outputs (n_p, n_max), wa and wb (n_p, n_max - 1), row k using its first
+    ``n_z[k]`` entries (and one fewer of wa, wb); rtol, status, iterations, residual (n_p,);
+    a yield wall sy (n_p, n_max) with the outputs pl, pl_load (n_p, n_max), or without one,
+    sy, pl and pl_load (n_p, 0)."""
     for k in prange(pressures.shape[0]):
-        s, it, res = fixed_point(step, grid, variant, G, c, wa, wb, gamma_s, pressures[k], rtol,
-                                 n_damp, max_iter, m_hist, omega, x_init[k], area[k],
-                                 sigma_a[k], g[k], u[k], load[k], det_area[k], det_load[k],
-                                 error[k], onset, theory, theory_gamma, sy[k], pl[k],
-                                 pl_load[k])
+        n = n_z[k]
+        s, it, res = fixed_point(step, grid, variant, G[k, :n], c[k, :n], wa[k, :n - 1],
+                                 wb[k, :n - 1], gamma_s, pressures[k], rtol[k], n_damp, max_iter,
+                                 m_hist, omega, x_init[k, :n], area[k, :n], sigma_a[k, :n],
+                                 g[k, :n], u[k, :n], load[k, :n], det_area[k, :n],
+                                 det_load[k, :n], error[k, :n], onset, theory, theory_gamma,
+                                 sy[k, :n], pl[k, :n], pl_load[k, :n])
         status[k] = s
         iterations[k] = it
         residual[k] = res
@@ -837,14 +841,14 @@ _GRID_AT = function_at(GRID_SIGNATURE)
 _adhesive_rows = njit_serial(_adhesive_sweep)
 
 
-def _adhesive_sweep_at(fixed_point, step, grid, variant, G, c, wa, wb, gamma_s, pressures,
-                       rtol, n_damp, max_iter, m_hist, omega, x_init, area, sigma_a, g, u, load,
-                       det_area, det_load, error, status, iterations, residual, onset, theory,
-                       theory_gamma, sy, pl, pl_load):
+def _adhesive_sweep_at(fixed_point, step, grid, variant, G, c, wa, wb, n_z, gamma_s,
+                       pressures, rtol, n_damp, max_iter, m_hist, omega, x_init, area, sigma_a,
+                       g, u, load, det_area, det_load, error, status, iterations, residual,
+                       onset, theory, theory_gamma, sy, pl, pl_load):
     """:func:`_adhesive_sweep` with the three functions given by their jit addresses
     (:class:`persson_fast._jit.CallingKernel`)."""
     _adhesive_rows(_FIXED_POINT_AT(fixed_point), _STEP_AT(step), _GRID_AT(grid), variant, G, c,
-                   wa, wb, gamma_s, pressures, rtol, n_damp, max_iter, m_hist, omega, x_init,
+                   wa, wb, n_z, gamma_s, pressures, rtol, n_damp, max_iter, m_hist, omega, x_init,
                    area, sigma_a, g, u, load, det_area, det_load, error, status, iterations,
                    residual, onset, theory, theory_gamma, sy, pl, pl_load)
 
