@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import logging
 import os
 import subprocess
 import sys
@@ -44,7 +45,10 @@ from numba.extending import intrinsic
 __all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange",
            "kernel_source_stamp", "CallingKernel", "function_at", "jit_address",
            "callable_with", "compile_for", "in_disk_cache", "compile_beside",
-           "compiling_beside"]
+           "compiling_beside", "announce_compile", "logger"]
+
+#: the package's logger: it says (INFO) when a first call compiles kernels
+logger = logging.getLogger("persson_fast")
 
 prange = numba.prange
 
@@ -286,15 +290,37 @@ def njit_sweeps(func):
 
 def in_disk_cache(dispatcher, signature) -> bool:
     """True when numba's disk cache holds ``dispatcher`` compiled for the argument types of
-    ``signature`` (:func:`compile_for`) with the current kernel sources; nothing is loaded.
+    ``signature`` (:func:`compile_for`; or a tuple of argument types) with the current kernel
+    sources; nothing is loaded.
     When the cache cannot be read this way (another numba version), True: the caller then
     compiles in this process, as it would anyway."""
     try:
         cache = dispatcher._cache
-        key = cache._index_key(tuple(signature.args), dispatcher.targetctx.codegen())
+        args = signature.args if hasattr(signature, "args") else signature
+        key = cache._index_key(tuple(args), dispatcher.targetctx.codegen())
         return key in cache._cache_file._load_index()
     except Exception:
         return True
+
+
+_announced = set()
+
+
+def announce_compile(what: str, seconds: float, jobs) -> bool:
+    """Log once per process, at INFO on the ``persson_fast`` logger, that ``what`` compiles
+    its kernels now (``jobs``: (dispatcher, signature or argument types) pairs, one missing
+    from the disk cache suffices): "compiling kernels for <what>, once per machine, about <seconds> s". True when
+    it logged. The command line prints these messages; an API user sees them with
+    ``logging.basicConfig(level=logging.INFO)``."""
+    if what in _announced or numba.config.DISABLE_JIT:
+        return False
+    if all(in_disk_cache(d, s) for d, s in jobs):
+        _announced.add(what)
+        return False
+    _announced.add(what)
+    logger.info("compiling kernels for %s, once per machine, about %.0f s (later calls and "
+                "processes load them from the disk cache)", what, seconds)
+    return True
 
 
 def _usable_cpus() -> int:

@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from ._jit import compile_for, compiling_beside
+from ._jit import announce_compile, compile_for, compiling_beside
 from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
                                FIXED_POINT_SIGNATURE, STEP_SIGNATURE, adhesive_sweep_parallel,
                                adhesive_sweep_serial, elastic_step, elastic_step_linked,
@@ -129,6 +129,10 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
 
 
 _compile_lock = threading.Lock()
+#: the first adhesive solve on a machine compiles the sweep, the fixed point, its diffusion
+#: step and the grid solver, the grid solver in a second process (measured on a 2-core Intel
+#: Xeon: 9-10 s; one usable CPU: about 15 s)
+ADHESION_COMPILE_SECONDS = 10.0
 #: the diffusion step the ``prange`` sweep links in, for the one the cached sweep calls
 LINKED_STEPS = {elastic_step: elastic_step_linked, yield_step: yield_step_linked}
 
@@ -138,6 +142,9 @@ def _compile_fixed_point(first):
     arguments ``first`` of a one-row sweep: on a cold cache the grid solver (the larger share)
     in a second process while this one compiles the rest
     (:func:`persson_fast._jit.compile_beside`)."""
+    announce_compile("adhesion", ADHESION_COMPILE_SECONDS,
+                     [(fixed_point, FIXED_POINT_SIGNATURE), (first[1], STEP_SIGNATURE),
+                      (_solve_grid_tol, GRID_SIGNATURE)])
     with compiling_beside([(_solve_grid_tol, GRID_SIGNATURE)]):
         compile_for(fixed_point, FIXED_POINT_SIGNATURE)
         compile_for(first[1], STEP_SIGNATURE)

@@ -306,8 +306,11 @@ def _cmd_contact(args) -> int:
                            "derived with adhesion, a yield wall or the corrected theories here")
     t0 = time.perf_counter()
     yield_wall = {} if s["hardness"] is None else {"hardness": s["hardness"]}
-    res = pf.solve_contact(surface, s["pressure"], e_star=e_star, method=s["method"],
-                           rtol=s["rtol"], **s["adhesion"], **s["theory"], **yield_wall)
+    res = _solve_with_progress(
+        pf, surface, s["pressure"], args.quiet or not sys.stderr.isatty(),
+        bool(s["adhesion"].get("work_of_adhesion", 0.0) > 0 or yield_wall),
+        e_star=e_star, method=s["method"], rtol=s["rtol"], **s["adhesion"], **s["theory"],
+        **yield_wall)
     elapsed = time.perf_counter() - t0
     sigma_c = None
     slope = surface.slope_rms()
@@ -366,6 +369,9 @@ def _cmd_contact(args) -> int:
     if s["pull_off"]:
         # (a corrected theory or a yield wall was refused with the settings: cli_config)
         t1 = time.perf_counter()
+        if not args.quiet and sys.stderr.isatty():
+            print("pull-off: following the contact branch into tension ...", file=sys.stderr,
+                  flush=True)
         sigma_c = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
                               **{"work_of_adhesion": 0.0, **s["adhesion"]})
         print(f"pull-off stress: {sigma_c:.5g} Pa ({time.perf_counter() - t1:.3g} s"
@@ -389,6 +395,88 @@ def _cmd_contact(args) -> int:
             _write_csv(outputs.path(s["csv"]), columns)
             outputs.commit()
     return 0
+
+
+#: seconds a contact solve runs before its progress bar appears
+PROGRESS_DELAY = 2.0
+#: at most this many progress updates along the pressures (each a solve of a block of them)
+PROGRESS_UPDATES = 25
+
+
+def _solve_with_progress(pf, surface, pressure, quiet, slow, **kwargs):
+    """``pf.solve_contact`` of the pressures, with a progress bar on stderr (tqdm) that
+    appears after ``PROGRESS_DELAY`` seconds, where the scene is ``slow`` (adhesion or a
+    yield wall), not ``quiet`` and tqdm is installed: the pressures are then solved in blocks
+    (every row's result is computed alone, so bitwise as in one call), and the result is the
+    blocks joined (:class:`_Joined`)."""
+    p = np.atleast_1d(np.asarray(pressure, dtype=float))
+    try:
+        from tqdm import tqdm
+    except ImportError:
+        tqdm = None
+    if quiet or not slow or tqdm is None or p.size < 2:
+        return pf.solve_contact(surface, p, **kwargs)
+    import numba
+
+    block = max(2 * int(numba.get_num_threads()), -(-p.size // PROGRESS_UPDATES))
+    parts = []
+    with tqdm(total=p.size, unit="pressure", delay=PROGRESS_DELAY, file=sys.stderr,
+              leave=False, dynamic_ncols=True) as bar:
+        for lo in range(0, p.size, block):
+            parts.append(pf.solve_contact(surface, p[lo:lo + block], **kwargs))
+            bar.update(parts[-1].pressure.size)
+    return parts[0] if len(parts) == 1 else _Joined(parts)
+
+
+class _Joined:
+    """The fields of several ContactResults of consecutive pressure blocks that ``contact``
+    reads, joined along the pressures."""
+
+    ROWS = ("pressure", "area", "mean_contact_pressure", "mean_contact_stress", "status",
+            "sticky", "iterations")
+
+    def __init__(self, parts):
+        from .results import summarize_status
+
+        first = parts[0]
+        for name in self.ROWS:
+            setattr(self, name, np.concatenate([getattr(r, name) for r in parts]))
+        for name in ("elastic_area", "plastic_area"):
+            if getattr(first, name, None) is not None:
+                setattr(self, name, np.concatenate([getattr(r, name) for r in parts]))
+        self.method, self.theory, self.theory_gamma = first.method, first.theory, first.theory_gamma
+        self.success, self.message = summarize_status(self.status)
+        offset, notes = 0, []
+        for r in parts:
+            if not r.success:
+                notes.append(f"pressures {offset}-{offset + r.pressure.size - 1}: {r.message}")
+            offset += r.pressure.size
+        if notes:
+            self.message += " (" + "; ".join(notes) + ")"
+        self.timings = {}
+        for r in parts:
+            for key, val in r.timings.items():
+                self.timings[key] = self.timings.get(key, 0.0) + val
+
+
+_log_handler = None
+
+
+def _log_to_stderr(quiet: bool) -> None:
+    """Print the package's INFO messages (that kernels are being compiled) on stderr, unless
+    ``quiet``."""
+    import logging
+
+    global _log_handler
+    from ._jit import logger
+
+    if _log_handler is None:
+        _log_handler = logging.StreamHandler(sys.stderr)
+        _log_handler.setFormatter(logging.Formatter("note: %(message)s"))
+        logger.addHandler(_log_handler)
+    _log_handler.setLevel(logging.WARNING if quiet else logging.INFO)
+    if logger.level == logging.NOTSET or logger.level > logging.INFO:
+        logger.setLevel(logging.INFO)
 
 
 # --------------------------------------------------------------------------------------------
@@ -430,6 +518,7 @@ def main(argv=None) -> int:
     try:
         parser = build_parser()
         args = parser.parse_args(argv)
+        _log_to_stderr(getattr(args, "quiet", False))
         handler = {"figure2": _cmd_figure2, "contact": _cmd_contact,
                    "info": _cmd_info}[args.command]
         return int(handler(args) or 0)

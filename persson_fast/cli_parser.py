@@ -95,6 +95,8 @@ def build_parser() -> argparse.ArgumentParser:
     f2.add_argument("--rtol", type=float, default=1e-6, metavar="R",
                     help="target relative accuracy (default: %(default)s)")
     f2.add_argument("--no-plot", action="store_true", help="do not write figure2.png")
+    f2.add_argument("--quiet", action="store_true",
+                    help="no note on stderr that kernels are being compiled")
     f2.add_argument("--check", action="store_true",
                     help="also solve the scene without adhesion with the grid solver 'cn' and "
                          "print its largest difference from the closed form (on a cold "
@@ -160,6 +162,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="solution method (default: auto)")
     ct.add_argument("--rtol", type=float, metavar="R",
                     help="target relative accuracy (default 1e-6)")
+    ct.add_argument("--quiet", action="store_true",
+                    help="no progress bar and no note that kernels are being compiled (both "
+                         "go to stderr, and the bar only to a terminal, after a few seconds)")
     ct.add_argument("--csv", metavar="FILE",
                     help="also write the table to this CSV file (replaced if it exists); "
                          "columns: pressure_Pa, area, force_per_contact_area_Pa, "

@@ -11,6 +11,7 @@ import time
 
 import numpy as np
 
+from ._jit import announce_compile
 from ._kernels.status import RTOL_NOT_MET
 from .methods import METHODS, sweep_kernels
 
@@ -23,6 +24,9 @@ PARALLEL_MIN_PRESSURES = 4
 #: blocks of rows per thread handed to the pool: more blocks balance better, each costs a
 #: kernel call (~10 us)
 BLOCKS_PER_THREAD = 4
+#: the first sweep of a grid method on a machine compiles it (measured on a 2-core Intel
+#: Xeon: "cn" with its grid solver 7.4 s)
+SWEEP_COMPILE_SECONDS = 8.0
 #: the values of ``parallel`` a caller may pass
 PARALLEL_CHOICES = (None, False, True, "threads", "prange")
 
@@ -324,6 +328,11 @@ def _warm(method, kernel) -> None:
     args, _, _ = _sweep_args(lead, np.array([0.0, 1.0]), np.zeros((1, 2)),
                              np.ones((1, 2)) if two else None, np.array([0.5]), 1e-3, -1, 2,
                              out, np.zeros(1, dtype=np.int64), np.zeros((1, 3), dtype=np.int64))
+    if hasattr(kernel, "_cache"):             # a disk-cached serial sweep
+        import numba
+
+        announce_compile(f"method {method!r}", SWEEP_COMPILE_SECONDS,
+                         [(kernel, tuple(numba.typeof(a) for a in args))])
     kernel(*args)
 
 
