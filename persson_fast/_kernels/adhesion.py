@@ -96,6 +96,9 @@ CROSSING_POINTS = 8
 #: shape, ceil((1 - min/max) SQRT_CELL_DENSITY) - 1 inner samples
 SQRT_CELL_RATIO = 0.99
 SQRT_CELL_DENSITY = 40.0
+#: depth of the detachment wall's cap below the start, in widths sqrt(2 G) of the free
+#: spread (see :func:`far_capped`)
+FAR_WALL_WIDTHS = 12.0
 
 
 @njit_serial
@@ -354,14 +357,47 @@ def wall_solve_two(G, x, g, sy, sigma0, rtol, onset, el, load, pl, pl_load, det_
     return kstat
 
 
+@njit_serial
+def far_capped(T, x, sigma0):
+    """The wall -x, never deeper than FAR_WALL_WIDTHS (K) widths of the free spread below
+    the start: x_k <= K sqrt(2 T_k+1 + (y0/K)^2) - sigma0 (y0 = sigma0 + x_0, the start's
+    distance to the wall, so the bound is the wall itself at T = 0; each node takes the
+    bound at the next node, so that the wall linear between them stays below the curve);
+    ``x`` itself where the wall never goes deeper.
+
+    No mass of the distribution goes that deep before the end: without the wall the stress
+    is a Brownian motion from sigma0 with variance 2T (the wall only removes mass), which
+    reaches sigma0 - sqrt(2 K^2 T + y0^2) on no interval [T_j, 2 T_j] with a chance above
+    2 Phi(-K/sqrt 2) (reflection principle), 2e-17 at K = 12, nor before T = y0^2/(2 K^2)
+    with one above 2 Phi(-K): the capped wall gives the same solution. But a wall receding
+    fast below the distribution (sigma_a growing faster than sqrt(G), e.g. a sticky surface
+    at zero load: to 50x sqrt(G1)) widens the grid, which spans the distance from the wall
+    to the distribution at every G, and with it the nodes; capped, that distance is at most
+    K/sqrt 2 profile widths."""
+    n = T.shape[0]
+    y0 = sigma0 + x[0]
+    if not (y0 > 0.0):
+        return x
+    k2 = FAR_WALL_WIDTHS * FAR_WALL_WIDTHS
+    out = x
+    for i in range(n):
+        j = min(i + 1, n - 1)
+        cap = math.sqrt(2.0 * k2 * T[j] + y0 * y0) - sigma0
+        if x[i] > cap:
+            if out is x:
+                out = x.copy()
+            out[i] = cap
+    return out
+
+
 @njit_inline
 def _elastic_solve(grid, variant, T, x, g, sigma0, rtol, onset, n_damp, area, load, det_a,
                    det_l, err, counts):
     if onset:
         return wall_solve(grid, variant, T, x, g, sigma0, rtol, n_damp, area, load, det_a,
                           det_l, err, counts)
-    return solve_variant_by(grid, variant | SMOOTH_WALL, T, x, sigma0, rtol, np.int64(-1),
-                            n_damp, area, load, det_a, det_l, err, counts)
+    return solve_variant_by(grid, variant | SMOOTH_WALL, T, far_capped(T, x, sigma0), sigma0,
+                            rtol, np.int64(-1), n_damp, area, load, det_a, det_l, err, counts)
 
 
 @njit_serial
