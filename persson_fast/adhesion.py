@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import threading
 import time
+from typing import NamedTuple
 
 import numpy as np
 
@@ -325,6 +326,15 @@ def _midpoints_cubic(u, x):
     return out
 
 
+class _Solution(NamedTuple):
+    """A row's solve of one zeta level: its outputs (8 arrays, 10 with a yield wall), the
+    fixed point's status, and the grid and Onset (or None) it was solved on."""
+    outs: list
+    status: int
+    grid: np.ndarray
+    onset: object
+
+
 class _ZetaLadder:
     """The fixed point on nested zeta grids, Richardson-extrapolated, with a-posteriori
     control of the zeta-grid error of the end area (issue 12).
@@ -400,11 +410,22 @@ class _ZetaLadder:
         self._centred[(r, k)] = o.centred(np.exp(u))
         self._grids.pop((r, k), None)
 
-    def coordinate(self, r, k, zeta=None):
-        """Points ``zeta`` (default: row r's level-k nodes) in the coordinate of
-        :func:`onset_coordinate` of row r's level k."""
-        return onset_coordinate(self.grid(r, k) if zeta is None else zeta,
-                                self.level_onset(r, k))
+    def solved_grid(self, k, r):
+        """The grid row r's level k was solved on."""
+        return self.sol[k][r].grid
+
+    def solved_v(self, k, r, zeta=None):
+        """Points ``zeta`` (default: the nodes row r's level k was solved on) in the
+        coordinate of :func:`onset_coordinate` of that solve's grid."""
+        entry = self.sol[k][r]
+        return onset_coordinate(entry.grid if zeta is None else zeta, entry.onset)
+
+    def _replan_as_solved(self, k, r):
+        """Solve row r's level k again on the grid of its stored solution."""
+        entry = self.sol[k][r]
+        if entry.onset is not None:
+            self._centred[(r, k)] = entry.onset
+            self._grids[(r, k)] = entry.grid
 
     def _solve_level(self, k, rows, starts):
         """Solve level k of ``rows`` from ``starts`` (per row: detachment stresses [Pa] on
@@ -416,14 +437,16 @@ class _ZetaLadder:
         while len(self.sol) <= k:
             self.sol.append([None] * self.n_p)
         for i, r in enumerate(rows):
-            self.sol[k][r] = ([o[i, :n_z[i]] for o in outs], int(status[i]))
+            self.sol[k][r] = _Solution([o[i, :n_z[i]] for o in outs], int(status[i]), grids[i],
+                                       self.level_onset(r, k))
         self.iterations[rows] += iterations
         self.residual[rows] = np.maximum(self.residual[rows], residual)
         return status
 
     def _ok(self, k, r):
         entry = self.sol[k][r] if k < len(self.sol) else None
-        return entry is not None and entry[1] == 0 and bool(np.all(np.isfinite(entry[0][1])))
+        return (entry is not None and entry.status == 0
+                and bool(np.all(np.isfinite(entry.outs[1]))))
 
     def _start_from(self, k, rows):
         """Start of level k + 1 from level k's detachment stress (full contact where level k
@@ -438,9 +461,9 @@ class _ZetaLadder:
             if not self._ok(k, r):
                 starts.append(None)
                 continue
-            x = self.sol[k][r][0][1]
-            z_from, z_to = self.grid(r, k), self.grid(r, k + 1)
-            v_from, v_to = self.coordinate(r, k), self.coordinate(r, k, z_to)
+            x = self.sol[k][r].outs[1]
+            z_from, z_to = self.solved_grid(k, r), self.grid(r, k + 1)
+            v_from, v_to = self.solved_v(k, r), self.solved_v(k, r, z_to)
             if z_to.size == 2 * z_from.size - 1 and np.array_equal(z_to[0::2], z_from):
                 start = _midpoints_cubic(v_from, x[None, :])[0]
             else:
@@ -449,11 +472,11 @@ class _ZetaLadder:
             # (not on a grid with cells a few ulps wide, a user's: the change, interpolated
             # across such a cell, would make the wall jump where G is flat)
             if regular and k >= 1 and self._ok(k - 1, r):
-                z_c = self.grid(r, k - 1)
-                v_c = self.coordinate(r, k - 1)
-                change = (np.interp(self.coordinate(r, k, z_c), v_from, x)
-                          - self.sol[k - 1][r][0][1]) / 4.0
-                start = np.maximum(start + np.interp(self.coordinate(r, k - 1, z_to), v_c,
+                z_c = self.solved_grid(k - 1, r)
+                v_c = self.solved_v(k - 1, r)
+                change = (np.interp(self.solved_v(k, r, z_c), v_from, x)
+                          - self.sol[k - 1][r].outs[1]) / 4.0
+                start = np.maximum(start + np.interp(self.solved_v(k - 1, r, z_to), v_c,
                                                      change), 0.0)
             starts.append(start)
         return starts
@@ -464,12 +487,12 @@ class _ZetaLadder:
         entry = self.sol[k][r]
         if entry is None:
             return None
-        g = entry[0][2]
+        g = entry.outs[2]
         cells = np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
         if cells.size != 1:
             return None
         i = int(cells[0])
-        u = np.log(self.grid(r, k))
+        u = np.log(entry.grid)
         return float(u[i] + (u[i + 1] - u[i]) * g[i] / (g[i] - g[i + 1]))
 
     def _solve_centred(self, k, rows, starts):
@@ -490,11 +513,11 @@ class _ZetaLadder:
                 o = self.level_onset(r, k)
                 if u is None or abs(u - o.u_star) <= ONSET_CENTRE_TOL * o.first_cell(k):
                     continue
-                v_old, x_old = self.coordinate(r, k), self.sol[k][r][0][1]
+                v_old, x_old = self.solved_v(k, r), self.sol[k][r].outs[1]
                 ok = self._ok(k, r)
                 self._centre(r, k, u)
                 redo.append(r)
-                starts.append(np.interp(self.coordinate(r, k, self.grid(r, k)), v_old, x_old)
+                starts.append(np.interp(self.solved_v(k, r, self.grid(r, k)), v_old, x_old)
                               if ok else None)
             if not redo:
                 return
@@ -526,7 +549,7 @@ class _ZetaLadder:
         self._solve_level(1, rows, [None if start is None else start[r] for r in rows])
         # a late sign change of gamma_eff: the diffusion tolerance is tightened from here on
         # (CROSSING_LATE, CROSSING_INNER_DIV)
-        late = [r for r in rows if self.sol[1][r][1] == 0 and self._late_crossing(r)]
+        late = [r for r in rows if self.sol[1][r].status == 0 and self._late_crossing(r)]
         self.late[late] = True
         graded = []
         if self.graded:
@@ -534,25 +557,23 @@ class _ZetaLadder:
                 u = self._crossing(1, r)
                 if u is not None and 0.0 < u < np.log(self.zeta[-1]):
                     graded.append(r)
-                    v_old, x_old = self.coordinate(r, 1), self.sol[1][r][0][1]
                     self._centre(r, 1, u)
             if graded:
                 self._solve_centred(1, np.array(graded), [
-                    np.interp(self.coordinate(r, 1, self.grid(r, 1)),
-                              onset_coordinate(self.standard(1), None), self.sol[1][r][0][1])
-                    for r in graded])
+                    np.interp(self.solved_v(1, r, self.grid(r, 1)), self.solved_v(1, r),
+                              self.sol[1][r].outs[1]) for r in graded])
         # (an ungraded row: its diffusions to rtol / CROSSING_INNER_DIV from here on; a graded
         # row tightens them only where its estimate asks for it, see refine_until)
         late = [r for r in late if r not in graded]
         self.inner_div[late] = CROSSING_INNER_DIV
         if late:
-            self._solve_level(1, np.array(late), [self.sol[1][r][0][1].copy() for r in late])
+            self._solve_level(1, np.array(late), [self.sol[1][r].outs[1].copy() for r in late])
         self._predict_centre(0, rows)
         starts0 = []
         for r in rows:
             if self._ok(1, r):
-                starts0.append(np.interp(self.coordinate(r, 1, self.grid(r, 0)),
-                                         self.coordinate(r, 1), self.sol[1][r][0][1]))
+                starts0.append(np.interp(self.solved_v(1, r, self.grid(r, 0)),
+                                         self.solved_v(1, r), self.sol[1][r].outs[1]))
             else:
                 starts0.append(None)
         self._solve_centred(0, rows, starts0)
@@ -577,7 +598,7 @@ class _ZetaLadder:
         from the finer levels' (their schedules force other steps), the amplification is
         the fixed point's."""
         sel = [r for r in rows if self._ok(0, r) and self._end(0, r) > 0.0
-               and abs(self.sol[0][r][0][7][-1]) * INNER_PROBE_SKIP
+               and abs(self.sol[0][r].outs[7][-1]) * INNER_PROBE_SKIP
                > self.rtol * self._end(0, r) + 1e-12]
         f = INNER_PROBE_FACTOR
         for factor, scale in ((1.0 / f, 1.0 / (f - 1.0)), (f, f / (f - 1.0))):
@@ -585,17 +606,19 @@ class _ZetaLadder:
                 return
             sel = np.array(sel, dtype=np.int64)
             kept = [self.sol[0][r] for r in sel]
+            for r in sel:
+                self._replan_as_solved(0, r)
             self.inner_div[sel] *= factor
-            self._solve_level(0, sel, [self.sol[0][r][0][1].copy() for r in sel])
+            self._solve_level(0, sel, [self.sol[0][r].outs[1].copy() for r in sel])
             self.inner_div[sel] /= factor
             again = []
             for i, r in enumerate(sel):
                 probe = self.sol[0][r]
                 self.sol[0][r] = kept[i]
-                if probe[1] != 0:
+                if probe.status != 0:
                     continue
-                change = abs(kept[i][0][0][-1] - probe[0][0][-1])
-                own = abs(kept[i][0][7][-1])
+                change = abs(kept[i].outs[0][-1] - probe.outs[0][-1])
+                own = abs(kept[i].outs[7][-1])
                 if factor < 1.0 and change < INNER_PROBE_SATURATED * own:
                     again.append(r)
                     continue
@@ -603,7 +626,7 @@ class _ZetaLadder:
             sel = again
 
     def _end(self, k, r):
-        return self.sol[k][r][0][0][-1]
+        return self.sol[k][r].outs[0][-1]
 
     def _end_estimate(self):
         """Estimate of the end area's zeta-grid error per pressure, the split mask (one of
@@ -615,7 +638,7 @@ class _ZetaLadder:
         a2 = np.array([self._end(K[r], r) for r in n])
         a1 = np.array([self._end(K[r] - 1, r) for r in n])
         a0 = np.array([self._end(K[r] - 2, r) for r in n])
-        ok0 = np.array([self.sol[K[r] - 2][r][1] == 0 for r in n]) & np.isfinite(a0)
+        ok0 = np.array([self.sol[K[r] - 2][r].status == 0 for r in n]) & np.isfinite(a0)
         ok0 &= (a0 > 0) == (a1 > 0)
         graded = np.array([o is not None for o in self.onset], dtype=bool)
         # an ungraded sign change (pull_off's discretisation, or one that appears on
@@ -644,7 +667,7 @@ class _ZetaLadder:
         self.unresolved = ~resolved & ~split & ~vanishing
         est = np.where(self.unresolved,
                        np.maximum(est, np.maximum(np.abs(a1 - a0), np.abs(a2 - a1))), est)
-        inner = np.array([abs(self.sol[K[r]][r][0][7][-1]) for r in n])
+        inner = np.array([abs(self.sol[K[r]][r].outs[7][-1]) for r in n])
         probed = self.amplification > 0.0
         inner = np.where(probed, INNER_PROBE_SAFETY * self.amplification * inner,
                          np.where(self.late, CROSSING_INNER_MARGIN * inner, inner))
@@ -655,7 +678,7 @@ class _ZetaLadder:
 
     def _crossing_cells(self, k, r):
         """The cells of level k where row r's gamma_eff changes sign."""
-        g = self.sol[k][r][0][2]
+        g = self.sol[k][r].outs[2]
         return np.flatnonzero((g[:-1] > 0) != (g[1:] > 0))
 
     def _has_crossing(self, k, r):
@@ -673,13 +696,13 @@ class _ZetaLadder:
         cells = self._crossing_cells(k, r)
         if cells.size == 0:
             return True
-        z = self.grid(r, k)
+        z = self.solved_grid(k, r)
         width = np.log10(z[cells + 1] / z[cells])
         return bool(np.all(width <= 1.01 / CROSSING_MIN_PER_DECADE))
 
     def _status_of(self, r):
-        s2 = self.sol[self.last[r]][r][1]
-        s1 = self.sol[self.last[r] - 1][r][1]
+        s2 = self.sol[self.last[r]][r].status
+        s1 = self.sol[self.last[r] - 1][r].status
         return s2 if s2 != 0 else s1
 
     def _statuses(self, est, area, rtol):
@@ -715,7 +738,9 @@ class _ZetaLadder:
                 for back in (2, 1, 0):
                     for k in np.unique(self.last[sel] - back):
                         at = sel[self.last[sel] - back == k]
-                        self._solve_centred(k, at, [self.sol[k][r][0][1].copy()
+                        for r in at:
+                            self._replan_as_solved(k, r)
+                        self._solve_centred(k, at, [self.sol[k][r].outs[1].copy()
                                                     if self._ok(k, r) else None for r in at])
                 continue
             rows = rows[~inner_led | (tightened >= INNER_TIGHTENINGS)]
@@ -735,24 +760,24 @@ class _ZetaLadder:
         """Row r's level-k outputs at the result's nodes (level 1 of the standard grids):
         the nodes its grid shares with them, and the cubic interpolant (in its
         :func:`onset_coordinate`) at those that an onset grid replaced."""
-        outs = self.sol[k][r][0]
-        if self.onset[r] is None:
+        outs = self.sol[k][r].outs
+        z = self.solved_grid(k, r)
+        if self.sol[k][r].onset is None and z is self.std[k]:
             return [o[::2 ** (k - 1)] for o in outs]
-        z = self.grid(r, k)
         i = np.minimum(np.searchsorted(z, self.zeta), z.size - 1)
         exact = z[i] == self.zeta
         stacked = np.array(outs)
         res = stacked[:, i]
         if not np.all(exact):
-            res[:, ~exact] = _cubic_at(self.coordinate(r, k), stacked,
-                                       self.coordinate(r, k, self.zeta[~exact]))
+            res[:, ~exact] = _cubic_at(self.solved_v(k, r), stacked,
+                                       self.solved_v(k, r, self.zeta[~exact]))
         return list(res)
 
     def profiles(self):
         """Profiles on the level-1 nodes: the extrapolation of the two finest levels of each
         pressure (the finer alone where one of them separated), and the error estimates."""
         n_z = self.zeta.size
-        n_out = len(self.sol[1][0][0])
+        n_out = len(self.sol[1][0].outs)
         res = [np.zeros((self.n_p, n_z)) for _ in range(n_out)]
         err = np.zeros((self.n_p, n_z))
         zeta_err = np.zeros(self.n_p)

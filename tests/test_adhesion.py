@@ -229,7 +229,7 @@ def test_ladder_start_interpolates_cubically_and_predicts_the_finer_level():
     """The start of a finer zeta level: the coarser level's values at its nodes, their cubic
     interpolant (in ln zeta) at the midpoints, exact for cubics on an uneven grid (linear in
     the end cells, clipped at 0), plus the second-order prediction (x_k - x_k-1)/4."""
-    from persson_fast.adhesion import _midpoints_cubic, _ZetaLadder
+    from persson_fast.adhesion import _midpoints_cubic, _Solution, _ZetaLadder
     from persson_fast.zeta_grid import refine_zeta
 
     u = np.cumsum(np.r_[0.0, np.linspace(0.1, 0.4, 9)])
@@ -250,7 +250,7 @@ def test_ladder_start_interpolates_cubically_and_predicts_the_finer_level():
     h = [1.0, 0.5, 0.25]
     ladder = _ZetaLadder(z1, 1, None)
     ladder.std = grids
-    ladder.sol = [[([np.zeros(z.size), f(z) + h[k] ** 2 * g(z)], 0)]
+    ladder.sol = [[_Solution([np.zeros(z.size), f(z) + h[k] ** 2 * g(z)], 0, z, None)]
                   for k, z in enumerate(grids[:2])]
     start = ladder._start_from(1, np.arange(1))[0]
     np.testing.assert_allclose(start, f(grids[2]) + h[2] ** 2 * g(grids[2]), rtol=1e-13)
