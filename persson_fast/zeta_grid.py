@@ -235,6 +235,13 @@ ONSET_DECADES_ABOVE = 1.0
 ONSET_DECADES_BELOW = 0.25
 #: the fewest graded cells on either side of the onset at level 0
 ONSET_MIN_CELLS = 4
+#: graded cells per standard cell of the interval at level 0 (the last graded cells are then
+#: ONSET_DENSITY / 2 times narrower than the standard cells beside them)
+ONSET_DENSITY = 4
+#: below the onset the standard nodes stay (sigma_a = 0 there: they shape no wall, but the
+#: points near zeta = 1 resolve the area's fast change there), but for those closer to a
+#: graded node than this fraction of the graded cell around them
+ONSET_GAP = 0.1
 
 
 class Onset:
@@ -299,16 +306,18 @@ def onset_at(z_star: float, zeta0: np.ndarray, breakpoints: np.ndarray) -> Onset
         inside = zeta0[(zeta0 >= z_lo) & (zeta0 <= z_hi)]
         near = zeta0[max(int(np.searchsorted(zeta0, z_hi)) - 1, 0):][:2]
         spacing = np.log(near[1] / near[0]) if near.size == 2 else width
-        m = int(np.ceil(2.0 * width / spacing)) if spacing > 0 else ONSET_MIN_CELLS
-        return int(min(max(m, ONSET_MIN_CELLS), 2 * max(inside.size, 1) + ONSET_MIN_CELLS))
+        m = int(np.ceil(ONSET_DENSITY * width / spacing)) if spacing > 0 else ONSET_MIN_CELLS
+        return int(min(max(m, ONSET_MIN_CELLS), ONSET_DENSITY * max(inside.size, 1)
+                       + ONSET_MIN_CELLS))
 
     return Onset(z_star, z_a, z_b, cells(z_a, z_star), cells(z_star, z_b))
 
 
 def onset_grid(standard: np.ndarray, onset: Onset, level: int) -> np.ndarray:
     """The zeta grid of ``level`` graded around ``onset`` (see :class:`Onset`): the standard
-    grid of that level outside [z_a, z_b] and the graded nodes inside. Grids of successive
-    levels nest (the graded nodes of level k are every other one of level k + 1)."""
+    grid of that level outside [z*, z_b] and the graded nodes inside [z_a, z_b] (below z*
+    the standard nodes stay too, but for those within ``ONSET_GAP`` of a graded cell's ends).
+    The graded nodes of level k are every other one of level k + 1.""" 
     o = onset
     parts = [standard[standard < o.z_a]]
     m = o.m_below << level
@@ -316,6 +325,15 @@ def onset_grid(standard: np.ndarray, onset: Onset, level: int) -> np.ndarray:
         t = (np.arange(m, 0, -1) / m) ** 2
         below = np.exp(o.u_star - (o.u_star - o.u_a) * t)
         below[0] = o.z_a
+        # the standard nodes inside, away from the graded ones
+        inner = standard[(standard > o.z_a) & (standard < o.z_star)]
+        if inner.size:
+            ub = np.log(np.append(below, o.z_star))
+            ui = np.log(inner)
+            j = np.clip(np.searchsorted(ub, ui), 1, ub.size - 1)
+            cell = ub[j] - ub[j - 1]
+            near = np.minimum(ui - ub[j - 1], ub[j] - ui)
+            below = np.sort(np.concatenate([below, inner[near > ONSET_GAP * cell]]))
         parts.append(below)
     parts.append(np.array([o.z_star]))
     m = o.m_above << level
