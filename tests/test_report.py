@@ -23,3 +23,9 @@ def test_quick_report_writes_tables_plot_and_data(tmp_path):
             assert r["error"] >= 0 and r["time"] > 0
     # cn beats the baseline by a wide margin even on the short ladder
     assert all(v["ratio"] > 5 for v in data["cn_versus_baseline"])
+    # the random adhesive scenes: the time distribution and the contract's check, the
+    # machine's processor named
+    assert "## Random self-affine adhesive scenes" in text
+    (row,) = data["random_adhesive"]
+    assert row["n"] == 8 and row["median"] > 0 and row["misses"] == 0
+    assert data["meta"]["cpu"] and data["meta"]["cpu"] in text
