@@ -4,6 +4,7 @@ scans, beside the seed scene's.
     python -m benchmarks.adhesive_scenes --rtol 1e-4                 # times, one thread
     python -m benchmarks.adhesive_scenes --rtol 1e-4 --check         # and errors, flags
     python -m benchmarks.adhesive_scenes --rtol 1e-4 --json out.json # rows for the report
+    python -m benchmarks.adhesive_scenes --rtol 1e-3 --pull-off      # pull_off per scene
 
 The scenes (fixed seed, ``--seed``, ``--scenes``): self-affine surfaces with Hurst exponent
 0.6-0.9, q0 = 10^3.5-10^5.5 1/m, 2.5-5 decades of roughness, h_rms 10 nm-1 um, E* 3 MPa-10 GPa,
@@ -136,6 +137,34 @@ def run(rtol, seed=1, n=40, check=False, repeat=1, out=print):
                 summary=summary)
 
 
+def run_pull_off(rtol, seed=1, n=40, out=print):
+    """pull_off of every scene at ``rtol``: its value, error estimate and time (or the error
+    it raised). Returns the rows."""
+    warnings.simplefilter("ignore")
+    rows = []
+    for i, params in enumerate(scenes(seed, n)):
+        s, kw, _ = build(params)
+        clock = CLOCK["clock"]
+        t0 = clock()
+        try:
+            sigma_c, info = pf.pull_off(s, rtol=rtol, full_output=True, **kw)
+            row = dict(scene=i, sigma_c=float(sigma_c), seconds=clock() - t0,
+                       estimate=float(info.get("error_estimate", 0.0)),
+                       converged=bool(info.get("converged", True)))
+        except (ValueError, RuntimeError) as exc:
+            row = dict(scene=i, error=f"{type(exc).__name__}: {exc}", seconds=clock() - t0)
+        rows.append(row)
+        out(f"scene {i:3d}: " + (f"sigma_c {row['sigma_c']:.6g} Pa, estimate "
+                                 f"{row['estimate']:.3g} Pa, converged {row['converged']}"
+                                 if "error" not in row else row["error"])
+            + f", {row['seconds']:.3f} s")
+    t = np.array([r["seconds"] for r in rows])
+    out(f"pull_off at rtol {rtol:g}: {sum('error' in r for r in rows)} raised, "
+        f"{sum(not r.get('converged', True) for r in rows)} not converged; time per scene "
+        f"median {np.median(t):.3f} s, worst {t.max():.3f} s, total {t.sum():.2f} s")
+    return rows
+
+
 def summarize(rows, rtol, seed_ms):
     """Median, 90th percentile, slowest tenth and worst time per pressure; with references:
     silent misses, flags and the share of flags within rtol."""
@@ -198,9 +227,17 @@ def main(argv=None):
     ap.add_argument("--check", action="store_true", help="compare with a solve at rtol/100")
     ap.add_argument("--json", help="write the rows to this file")
     ap.add_argument("--cpu", action="store_true", help="time with the process's CPU time")
+    ap.add_argument("--pull-off", action="store_true",
+                    help="time pull_off of every scene instead (at --rtol)")
     a = ap.parse_args(argv)
     if a.cpu:
         CLOCK["clock"] = time.process_time
+    if a.pull_off:
+        rows = run_pull_off(a.rtol, a.seed, a.scenes, out=lambda s: print(s, flush=True))
+        if a.json:
+            with open(a.json, "w") as f:
+                json.dump(rows, f, indent=1)
+        return
     res = run(a.rtol, a.seed, a.scenes, a.check, a.repeat, out=lambda s: print(s, flush=True))
     if a.json:
         with open(a.json, "w") as f:
