@@ -47,7 +47,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["WallSampling", "sample_wall", "check_wall_callable", "check_kinks"]
+__all__ = ["WallSampling", "sample_wall", "check_wall_callable", "check_kinks",
+           "CallableWallError"]
 
 #: share of rtol given to the wall's interpolation error (with the bound's kappa = 1) [-]
 WALL_BUDGET = 0.25
@@ -104,40 +105,51 @@ class WallSampling:
     n_inserted: int = 0
 
 
-def _call(func, x: np.ndarray) -> np.ndarray:
-    """func(x) as a finite float64 array of x's shape, or a ValueError naming sigma_a."""
+class CallableWallError(ValueError):
+    """A callable wall (or the callable it is built from, e.g. a hardness of zeta) failed or
+    returned what a wall cannot be; the message names the argument the user gave."""
+
+
+def _call(func, x: np.ndarray, name: str = "sigma_a") -> np.ndarray:
+    """func(x) as a finite float64 array of x's shape, or a ValueError naming the wall
+    ``name`` (the argument the callable was given as: "sigma_a" or "sigma_y"). A
+    :class:`CallableWallError` raised inside ``func`` (by a wrapper that names the user's own
+    argument, e.g. ``hardness``) passes through unchanged."""
     try:
         y = func(x.copy())
+    except CallableWallError:
+        raise
     except Exception as exc:  # noqa: BLE001 -- any failure of the user's code is reported
-        raise ValueError(
-            f"sigma_a must be samples or a vectorised callable G [Pa^2] -> sigma_a [Pa]; "
+        raise CallableWallError(
+            f"{name} must be samples or a vectorised callable G [Pa^2] -> {name} [Pa]; "
             f"calling it on an array of {x.size} diffusion times in [{x.min() if x.size else 0:.6g}, "
             f"{x.max() if x.size else 0:.6g}] Pa^2 raised {type(exc).__name__}: {exc}"
         ) from exc
     try:
         arr = np.asarray(y, dtype=np.float64)
     except (TypeError, ValueError) as exc:
-        raise ValueError(
-            f"sigma_a(G) must return real numbers [Pa]; got {type(y).__name__} {y!r:.80}"
+        raise CallableWallError(
+            f"{name}(G) must return real numbers [Pa]; got {type(y).__name__} {y!r:.80}"
         ) from exc
     if arr.shape != x.shape:
-        raise ValueError(
-            f"sigma_a(G) must return an array of G's shape {x.shape} (a vectorised callable, "
+        raise CallableWallError(
+            f"{name}(G) must return an array of G's shape {x.shape} (a vectorised callable, "
             f"e.g. written with numpy functions) [Pa]; got shape {arr.shape}"
         )
     bad = ~np.isfinite(arr)
     if np.any(bad):
         i = int(np.argmax(bad))
-        raise ValueError(
-            f"sigma_a(G) must be finite [Pa] for every G in [0, G[-1]] (a callable wall is "
-            f"followed from G = 0); got sigma_a({x[i]!r}) = {arr[i]!r}"
+        raise CallableWallError(
+            f"{name}(G) must be finite [Pa] for every G in [0, G[-1]] (a callable wall is "
+            f"followed from G = 0); got {name}({float(x[i])!r}) = {float(arr[i])!r}"
         )
     return arr
 
 
-def check_wall_callable(func, G: np.ndarray) -> np.ndarray:
-    """Validate a callable wall on the user's times: the finite values there [Pa]."""
-    return _call(func, np.ascontiguousarray(G, dtype=np.float64))
+def check_wall_callable(func, G: np.ndarray, name: str = "sigma_a") -> np.ndarray:
+    """Validate a callable wall on the user's times: the finite values there [Pa]; errors
+    name the wall as ``name``."""
+    return _call(func, np.ascontiguousarray(G, dtype=np.float64), name)
 
 
 def check_kinks(kinks, g_end: float) -> np.ndarray:
@@ -198,7 +210,7 @@ def _cluster(found, g_end: float) -> np.ndarray:
 
 
 def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int = MAX_POINTS,
-                at_user: np.ndarray | None = None) -> WallSampling:
+                at_user: np.ndarray | None = None, name: str = "sigma_a") -> WallSampling:
     """Sample a callable wall on a schedule fine enough for ``rtol``.
 
     Parameters
@@ -211,6 +223,7 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
         exactly. [Pa^2]
     max_points : int -- cap on the schedule length.
     at_user : (n_t,) or None -- func(G) when already evaluated (validated). [Pa]
+    name : str -- the argument the wall was given as, named in errors ("sigma_a", "sigma_y").
 
     Returns
     -------
@@ -223,21 +236,21 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
     G = np.ascontiguousarray(G, dtype=np.float64)
     p = np.atleast_1d(np.asarray(pressure, dtype=np.float64))
     if at_user is None:
-        at_user = check_wall_callable(func, G)
+        at_user = check_wall_callable(func, G, name)
     g_end = float(G[-1])
     k_decl = check_kinks(kinks, g_end)
     base = np.unique(np.concatenate([[0.0], G, k_decl]))
     if base.size < 2:
-        f0 = _call(func, base)
+        f0 = _call(func, base, name)
         return WallSampling(G=base, sigma_a=f0, index=np.searchsorted(base, G), at_user=at_user)
     pts = _seed(base)
-    vals = _call(func, pts)
+    vals = _call(func, pts, name)
     # the most demanding pressure: the smallest one in contact at G = 0
     in_contact = p + vals[0] > 0
     if not np.any(in_contact):
         # every pressure is separated from the start: the wall is never met
         sched = base
-        sv = _call(func, sched)
+        sv = _call(func, sched, name)
         return WallSampling(G=sched, sigma_a=sv, index=np.searchsorted(sched, G),
                             at_user=at_user)
     p_min = float(np.min(p[in_contact]))
@@ -284,7 +297,7 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
     a, b = pts[:-1], pts[1:]
     fa, fb = vals[:-1], vals[1:]
     q1, m, q3 = probes(a, b)
-    fq = _call(func, np.concatenate([q1, m, q3])).reshape(3, -1)
+    fq = _call(func, np.concatenate([q1, m, q3]), name).reshape(3, -1)
     fq1, fm, fq3 = fq
     kink = np.zeros(a.shape, dtype=bool)
     r, dev = ratios(a, b, fa, fb, (q1, m, q3), (fq1, fm, fq3))
@@ -300,8 +313,8 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
         stuck = fail & tiny
         if np.any(stuck & (r > 1.0)):
             i = int(np.flatnonzero(stuck & (r > 1.0))[0])
-            raise ValueError(
-                f"sigma_a(G) must be continuous [Pa] (a callable wall is sampled linearly "
+            raise CallableWallError(
+                f"{name}(G) must be continuous [Pa] (a callable wall is sampled linearly "
                 f"between points); near G = {a[i]:.17g} Pa^2 it changes from {fa[i]!r} to "
                 f"{fb[i]!r} over an interval of {b[i] - a[i]:.3g} Pa^2. Give a jumping wall "
                 f"as samples with a repeated G value at the jump"
@@ -332,7 +345,7 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
         nfm = np.concatenate([FQ1, FQ3])
         nq1 = _split_points(na, nm)
         nq3 = _split_points(nm, nb)
-        fnew = _call(func, np.concatenate([nq1, nq3])).reshape(2, -1)
+        fnew = _call(func, np.concatenate([nq1, nq3]), name).reshape(2, -1)
         nr, ndev = ratios(na, nb, nfa, nfb, (nq1, nm, nq3), (fnew[0], nfm, fnew[1]))
         pd = np.concatenate([parent_dev, parent_dev])
         # deviation falling less than x KINK_DROP: a kink (or a jump) in the child
