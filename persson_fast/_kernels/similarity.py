@@ -82,6 +82,15 @@ KINK_EXTRAPOLATED_ORDER = 2.0  # ... from the first kink of the wall on
 LEAK_TOL = 1e-10      # far-field leakage above this is flagged
 K_LAYER = 1.0         # after a cut, the wall layer is smoothed over a diffusion time K_LAYER h^2
 PIECE_HALVE = 1       # piece_flags: the piece takes half the steps (paired in the coarsest run)
+PIECE_GRADE = 4      # piece_flags: the piece starts at a kink: the steps of the next
+                     # GRADE_SPAN e-folds of G are graded (see march)
+PIECE_GRADED = 8     # piece_flags: the piece starts within GRADE_SPAN after a graded kink
+GRADE_SPAN = 1.0     # e-folds of G after a kink over which the steps are graded ...
+GRADE_STEPS = 2      # ... with this many times the steps
+GRADE_SLOPE_JUMP = 0.02  # a graded kink: the slope jumps by this fraction of the larger slope
+GRADE_ISOLATION = 2.0    # ... and by this factor more than at the neighbouring points
+GRADE_CLUSTER = 0.05     # (a neighbour across a piece this much shorter than the other side's
+                         # is part of the same kink)
 PIECE_KINK = 2        # piece_flags: damped restart at the piece's end (march supports it;
                       # not set: see _first_kink)
 KINK_SCALE = 1.6       # resolution factor of a tolerance-driven solve of a kinked wall ...
@@ -349,6 +358,8 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     det_load_c = 0.0
     jumped = False
     damp_left = 0
+    # the last kink (a point whose next piece is flagged PIECE_GRADE), 0 before any
+    g_kink = g_start if (i_first < G_k.shape[0] and piece_flags[i_first] & PIECE_GRADE) else 0.0
     g_cur = g_start
     sa_cur = sa_s
     n_out = G_k.shape[0]
@@ -424,9 +435,21 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                     m *= refine // 2
                 else:
                     m *= refine
+                # within GRADE_SPAN e-folds of G after a kink, GRADE_STEPS times the steps,
+                # graded as tau = GRADE_SPAN u^2 (tau = ln(G / G_kink), u uniform): the error
+                # of the singular transient after the kink stays second order in the step
+                m_all = m
+                u_a = 0.0
+                du = 0.0
+                if g_kink > 0.0:
+                    tau_a = math.log(g_cur / g_kink)
+                    if tau_a < GRADE_SPAN:
+                        m_all = GRADE_STEPS * m
+                        u_a = math.sqrt(tau_a / GRADE_SPAN)
+                        du = (math.sqrt(math.log(g_stop / g_kink) / GRADE_SPAN) - u_a) / m_all
                 ratio = g_stop / g_cur if m == 1 else (g_stop / g_cur) ** (1.0 / m)
                 g_a = g_cur
-                for step in range(m):
+                for step in range(m_all):
                     if damp_left > 0:
                         n_sub = 2
                         theta = 1.0
@@ -436,9 +459,14 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                         theta = theta_main
                     counts[1] += n_sub
                     counts[2] += n_sub * (n - 1)
-                    rho = ratio if n_sub == 1 else math.sqrt(ratio)
+                    if du > 0.0:
+                        u_b = u_a + du * (step + 1.0)
+                        step_ratio = g_kink * math.exp(GRADE_SPAN * u_b * u_b) / g_a
+                    else:
+                        step_ratio = ratio
+                    rho = step_ratio if n_sub == 1 else math.sqrt(step_ratio)
                     for sub in range(n_sub):
-                        if step == m - 1 and sub == n_sub - 1:
+                        if step == m_all - 1 and sub == n_sub - 1:
                             g_b = g_stop
                             w_b = w_stop
                             sa_b = sa_stop
@@ -476,6 +504,8 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
             sa_cur = sa_k[i]
             if piece_flags[i] & PIECE_KINK:
                 damp_left = n_damp
+            if i + 1 < n_out and piece_flags[i + 1] & PIECE_GRADE:
+                g_kink = g_cur
         a, m1 = _moments(p, h)
         if not (math.isfinite(a) and math.isfinite(m1)):
             return st.NONFINITE, leak
@@ -547,11 +577,13 @@ def _schedule_steps(G_k, sa_k, i_first, g_start, nper, nper_width, piece_flags, 
     for i in range(i_first, G_k.shape[0]):
         g = G_k[i]
         if g > g_prev:
-            m = _piece_steps(g_prev, g, sa_prev, sa_k[i], nper, nper_width) - 1
-            if piece_flags[i] & PIECE_HALVE and refine >= 2:
-                total += m * (refine // 2)
+            m = _piece_steps(g_prev, g, sa_prev, sa_k[i], nper, nper_width)
+            if piece_flags[i] & (PIECE_GRADE | PIECE_GRADED):
+                total += GRADE_STEPS * m * refine - 1
+            elif piece_flags[i] & PIECE_HALVE and refine >= 2:
+                total += (m - 1) * (refine // 2)
             else:
-                total += m * refine
+                total += (m - 1) * refine
             g_prev = g
         sa_prev = sa_k[i]
     return total + (n_levels + 1) * refine
@@ -568,6 +600,45 @@ def _is_kink(G_k, sa_k, i):
     s1 = (sa_k[i] - sa_k[i - 1]) / d1
     s2 = (sa_k[i + 1] - sa_k[i]) / d2
     return abs(s2 - s1) > KINK_SLOPE_JUMP * max(abs(s1), abs(s2))
+
+
+@njit_serial
+def _slope_change(G_k, sa_k, i):
+    """(|slope jump| at schedule point i, larger of the two slopes); (0, 0) where a piece
+    next to i has no length (a jump or the ends of the schedule)."""
+    if i < 1 or i + 1 >= G_k.shape[0]:
+        return 0.0, 0.0
+    d1 = G_k[i] - G_k[i - 1]
+    d2 = G_k[i + 1] - G_k[i]
+    if not (d1 > 0.0 and d2 > 0.0):
+        return 0.0, 0.0
+    s1 = (sa_k[i] - sa_k[i - 1]) / d1
+    s2 = (sa_k[i + 1] - sa_k[i]) / d2
+    return abs(s2 - s1), max(abs(s1), abs(s2))
+
+
+@njit_serial
+def _is_graded_kink(G_k, sa_k, i):
+    """A kink whose steps after it are graded (:func:`march`): the slope jumps at point i by
+    more than GRADE_SLOPE_JUMP of the larger slope, and by more than GRADE_ISOLATION times
+    the slope jumps at both neighbouring points (an isolated slope jump; a smooth wall
+    sampled at many points changes its slope a little at each, and is not graded). A
+    neighbour across a piece shorter than GRADE_CLUSTER times the piece on the other side
+    is part of the same kink and not compared."""
+    jump, slope = _slope_change(G_k, sa_k, i)
+    if not jump > GRADE_SLOPE_JUMP * slope:
+        return False
+    # a neighbour across a piece far shorter than the piece on the other side belongs to the
+    # same kink (an adaptive sampling puts points on both sides of a kink, close together)
+    d1 = G_k[i] - G_k[i - 1]
+    d2 = G_k[i + 1] - G_k[i]
+    j_lo = 0.0
+    j_hi = 0.0
+    if d1 >= GRADE_CLUSTER * d2:
+        j_lo, _ = _slope_change(G_k, sa_k, i - 1)
+    if d2 >= GRADE_CLUSTER * d1:
+        j_hi, _ = _slope_change(G_k, sa_k, i + 1)
+    return jump > GRADE_ISOLATION * max(j_lo, j_hi)
 
 
 @njit_serial
@@ -622,6 +693,8 @@ def _pair_pieces(G_k, sa_k, i_first, g_start, nper, nper_width, coarsen_at, piec
         g_b = G_k[i + 1]
         ok = g_a < g_m < g_b
         if ok and G_k[i - 1] <= G_k[i - 2]:
+            ok = False
+        if ok and (piece_flags[i] | piece_flags[i + 1]) & (PIECE_GRADE | PIECE_GRADED):
             ok = False
         if ok:
             for c in coarsen_at:
@@ -772,6 +845,12 @@ def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order
         asym = d1 * d2 > 0.0 and abs(d1) <= q * ASYMPTOTIC_SLACK * abs(d2) and \
             q * abs(d2) <= ASYMPTOTIC_SLACK * abs(d1)
         e = e_lo if asym else max(e_lo, e_hi)
+        if order < 1.5 and not extrapolate:
+            # implicit Euler: the error of F is a dt + b h^2 (first order in the step, second
+            # in the nodes, both halved per run); B, C, F solve for both parts, the error of F
+            # being (d1 - 5 d2)/3. Where the two parts have opposite signs, |d2| alone can sit
+            # far below it (measured 0.51x on a callable wall, issue 33)
+            e = max(e, abs(d1 - 5.0 * d2) / 3.0)
         if not math.isfinite(e):
             e = e_hi
         if not math.isfinite(e):
@@ -1016,6 +1095,17 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
     # (its own thinned schedule), so that the coarse and fine runs keep one and two steps
     # per piece instead of the two and four an exact 2:1:1/2 ladder would force
     piece_flags = np.zeros(nt + 1, dtype=np.int64)
+    if detect_kinks:
+        # the piece after a kink, and those starting within GRADE_SPAN e-folds of G after
+        # it: graded steps (see march), never paired
+        g_kink = 0.0
+        for k in range(max(i_first - 1, 1), nt + 1):
+            if k < nt and _is_graded_kink(G_k, sa_k, k):
+                piece_flags[k + 1] |= PIECE_GRADE
+                g_kink = G_k[k]
+            elif g_kink > 0.0 and k < nt and G_k[k] > 0.0 and \
+                    math.log(G_k[k] / g_kink) < GRADE_SPAN:
+                piece_flags[k + 1] |= PIECE_GRADED
     keep = np.ones(nt + 1, dtype=np.bool_)
     keep_all = np.ones(nt + 1, dtype=np.bool_)
     # hard cap on the work of all runs: the first ladder (runs of n_half, 2 n_half, 4 n_half
@@ -1049,7 +1139,7 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
         if keep[k]:
             G_t[kk] = G_k[k]
             sa_t[kk] = sa_k[k]
-            flags_t[kk] = piece_flags[k] & PIECE_KINK
+            flags_t[kk] = piece_flags[k] & (PIECE_KINK | PIECE_GRADE)
             kk += 1
         elif k < i_first:
             i_first_t -= 1
