@@ -20,7 +20,12 @@ exponentially fitted (its cell Peclet number raises the diffusion coefficient un
 which keeps thin wall layers monotone and the moment identities exact. Time: theta-steps, Crank-Nicolson with a
 Rannacher start (implicit-Euler half steps) after every boundary jump. Steps are uniform in
 ln G (geometric in G), the natural step both while the profile is narrow (G << y0^2) and in
-the late similarity regime, so the cost per decade of G is fixed.
+the late similarity regime, so the cost per decade of G is fixed. After an isolated kink of a
+prescribed wall (a jump of its speed, :func:`_is_graded_kink`) the solution has a transient
+singular at the kink (the wall layer restarts as sqrt(G - G_kink)), which uniform steps
+resolve at order ~1.4 only; the steps of the next GRADE_SPAN e-folds of G are therefore
+GRADE_STEPS times as many and graded as (G - G_kink) ~ u^2 in ln G, which keeps the ladder
+second order there (issue 33).
 
 Exact discrete bookkeeping: with the step size dt chosen from the step's growth ratio
 r = w_{n+1}/w_n as dt = (r - 1)/(2 theta + 2 (1 - theta) r) and the drift evaluated with the
@@ -33,7 +38,11 @@ projected onto the grid so that its discrete area and first moment are exact. Th
 (N, M) and (2N, 2M) are combined by Richardson extrapolation, which cancels the leading
 O(h^2 + dt^2) error. A third run (N/2, M/2) gives a second extrapolated value, and the
 error estimate is that of the returned value (:func:`_ladder_estimate`; from the first kink
-of a prescribed wall on, :func:`_first_kink`, it assumes order 2); with a tolerance
+of a prescribed wall on, :func:`_first_kink`, it assumes order 2; where a prescribed wall
+recedes faster than a diffusion length per node spacing, cell Peclet number w v h > PE_SUB,
+the layer it leaves is below the grid and the flux through the wall face is first order in
+h: the estimate adds SUB_GRID times that face's advective flux, which the ladder cannot
+cancel); with a tolerance
 the ladder is refined (nodes and steps doubled) while the estimate misses it, up to the work
 cap (then RTOL_NOT_MET or GRID_CAP). The work cap is judged by the steps the tolerance needs
 (not those a dense schedule forces) and splits its cut between nodes and steps by the time
@@ -66,6 +75,8 @@ PECLET_MAX = 0.1       # largest cell Peclet number of the wall drift (exponenti
                        # layer, 1/(w|v|) wide, is resolved like the profile; at 0.25 and
                        # fixed, fast walls (b y0 = -30) kept an O(h^2) layer error of 20 rtol)
 PECLET_CAP = 0.25      # ... and never above this (coarse tolerances)
+PE_SUB = 1.0           # a receding wall whose cell Peclet number w v h exceeds this ...
+SUB_GRID = 0.5         # ... adds SUB_GRID times its advective wall-face flux to the estimate
 WORK_MAX = 4e6       # coarse node-steps above which resolution is cut (and flagged), rtol >= 1e-6
 WORK_GROWTH_MAX = 30.0  # below rtol = 1e-6 the cap grows as (1e-6/rtol)^(1/2), as the work of a
                         # plain "cn" scene does, up to this factor (rtol = 1.1e-9)
@@ -310,7 +321,7 @@ def _fluxes(p, h, drift, diff):
 def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nodes, h,
           n_steps_per_lng, n_steps_per_width, refine, n_damp, theta_main, coarsen_at,
           piece_flags, p, tmp, lo, di, up, out_area, out_load, out_det_area, out_det_load,
-          counts):
+          out_sub, counts):
     """March one resolution from the exact start at ``g_start`` through the schedule.
 
     Scaled units (y0 = 1). Each schedule piece gets ``refine`` times the steps that
@@ -322,8 +333,12 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     the undamped steps. ``piece_flags[i]`` (per schedule index, for the piece ending there):
     PIECE_HALVE takes ``refine // 2`` steps on it (a piece one step of the coarsest run shares
     with its neighbour, see :func:`_pair_pieces`), PIECE_KINK starts ``n_damp`` damped steps
-    after the point (a kink of the wall, see :func:`_mark_kinks`). Adds the steps and node-steps taken to ``counts[1]``, ``counts[2]``.
-    Returns (status, leak), leak the mass lost through the far end.
+    after the point, PIECE_GRADE marks a piece that starts at a kink: the steps of the next
+    GRADE_SPAN e-folds of G are graded (GRADE_STEPS times as many, (G - G_kink) ~ u^2 in
+    ln G). ``out_sub`` receives the sub-grid uncertainty of a fast receding wall accumulated
+    up to each output (SUB_GRID, PE_SUB). Adds the steps and node-steps taken to
+    ``counts[1]``, ``counts[2]``. Returns (status, leak), leak the mass lost through the far
+    end.
     """
     n = n_nodes - 1
     p = p[: n + 1]
@@ -356,6 +371,9 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
     leak = 0.0
     det_c = 0.0
     det_load_c = 0.0
+    # the sub-grid uncertainty of the wall flux where a receding wall outruns the node
+    # spacing (cell Peclet number w v h > PE_SUB, see SUB_GRID)
+    sub_unc = 0.0
     jumped = False
     damp_left = 0
     # the last kink (a point whose next piece is flagged PIECE_GRADE), 0 before any
@@ -482,8 +500,17 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
                         # no layer and fitting would only add diffusion where the mass sits
                         diff = fitted_diffusion(drift * h) if v < 0.0 else 1.0
                         fw0, ff0 = _fluxes(p, h, drift, diff)
+                        p1_a = p[1]
                         theta_step(p, h, drift, diff, dt, theta, lo, di, up)
                         fw1, ff1 = _fluxes(p, h, drift, diff)
+                        if drift * h > PE_SUB:
+                            # the advective part of the flux through the wall face,
+                            # -drift (p_0 + p_1)/2: where the wall recedes by more than a
+                            # diffusion length per node spacing, the layer it leaves is
+                            # below the grid and this flux is not the wall's (its error is
+                            # first order in h, measured 1-2x this term)
+                            sub_unc += SUB_GRID * dt * drift * 0.5 * (
+                                (1.0 - theta) * abs(p1_a) + theta * abs(p[1]))
                         d_det = dt * ((1.0 - theta) * fw0 + theta * fw1)
                         # compensated (Kahan) sums: thousands of tiny increments
                         yk = d_det - det_c
@@ -513,6 +540,7 @@ def march(G_k, sa_k, i_first, g_start, start_linear, b_start, sa0, sigma0, n_nod
         out_load[i] = w * m1 - sa_cur * a
         out_det_area[i] = det
         out_det_load[i] = det_load
+        out_sub[i] = sub_unc
     if leak > LEAK_TOL:
         return st.FAR_LEAK, leak
     if jumped:
@@ -800,7 +828,7 @@ def solve_variant_by(grid, variant, G, sa, sigma0, rtol, level, n_damp, out_area
 
 @njit_serial
 def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order, rtol, est,
-                     kink_first):
+                     kink_first, sub_f):
     """Error estimate of the returned area from three runs in exact 2:1 ratio; True when it
     meets ``rtol`` (|error| <= rtol A + RTOL_ATOL at every output, or ``rtol`` <= 0).
 
@@ -816,7 +844,10 @@ def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order
     |d2|/(2^order - 1).
     Where the ratio is off by more than ASYMPTOTIC_SLACK (or the signs differ) the ladder
     is not asymptotic and the larger, un-extrapolated measure is taken as well: |d2|/3 for
-    R (the error of F), |d2| for F. A non-finite B (the coarsest run) leaves the
+    R (the error of F), |d2| for F. Implicit Euler (``order`` 1, not extrapolated) errs by
+    a dt + b h^2, both halved per run: the three runs give that error as (d1 - 5 d2)/3, and
+    the larger of it and |d2| is taken. ``sub_f`` (the finest run's sub-grid uncertainty
+    of a fast receding wall, first order in h) is added. A non-finite B (the coarsest run) leaves the
     un-extrapolated measure. Where B skipped the point (``keep_b`` False: it crossed a pair
     of pieces in one step, see :func:`_pair_pieces`; never the first or last point) the
     estimate is the larger of its neighbours' (the error of R is smooth in G; B's value there
@@ -855,13 +886,16 @@ def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order
             e = e_hi
         if not math.isfinite(e):
             met = False
+        # the sub-grid uncertainty of a fast receding wall (first order in h: the ladder
+        # does not cancel it), that of the finest run
+        e += sub_f[k]
         est[k] = e
         if e > rtol * min(max(a, 0.0), 1.0) + RTOL_ATOL:
             met = False
     for k in range(i_first + 1, n - 1):
         if keep_b[k]:
             continue
-        e = max(est[k - 1], est[k + 1])
+        e = max(est[k - 1], est[k + 1], sub_f[k])
         est[k] = e
         a = area_f[k] + (area_f[k] - area_c[k]) / 3.0 if extrapolate else area_f[k]
         if e > rtol * min(max(a, 0.0), 1.0) + RTOL_ATOL:
@@ -1089,6 +1123,8 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
     r_load = np.empty((3, nt + 1))
     r_det = np.empty((3, nt + 1))
     r_det_load = np.empty((3, nt + 1))
+    r_sub = np.zeros((3, nt + 1))
+    no_sub = np.zeros(nt + 1)
     run_status = np.zeros(3, dtype=np.int64)
     est = np.zeros(nt + 1)
     # where the schedule forces steps, the coarsest run crosses pairs of pieces in one step
@@ -1147,6 +1183,7 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
     t_load = np.empty(n_keep)
     t_det = np.empty(n_keep)
     t_det_load = np.empty(n_keep)
+    t_sub = np.empty(n_keep)
     j = 0
     met = True
     work_0 = counts[2]
@@ -1162,7 +1199,7 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             s_j, _ = march(G_t, sa_t, i_first_t, g_start, start_linear, b_lin, sa0s, sig0s,
                            n_j + 1, 2.0 * h_c, nper_h, nper_width_h, np.int64(1), n_damp, theta,
                            coarsen_at, flags_t, p[: n_j + 1], tmp[: n_j + 1], lo, di, up,
-                           t_area, t_load, t_det, t_det_load, counts)
+                           t_area, t_load, t_det, t_det_load, t_sub, counts)
             kk = 0
             for k in range(nt + 1):
                 if keep[k]:
@@ -1175,15 +1212,19 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
                            n_j + 1, 2.0 * h_c / (1 << j), nper_h, nper_width_h, np.int64(1 << j),
                            n_damp, theta, coarsen_at, piece_flags, p[: n_j + 1], tmp[: n_j + 1],
                            lo, di, up, r_area[slot],
-                           r_load[slot], r_det[slot], r_det_load[slot], counts)
+                           r_load[slot], r_det[slot], r_det_load[slot], r_sub[slot], counts)
         run_status[slot] = s_j
         if j >= 2:
             sb = (j - 2) % 3
             sc = (j - 1) % 3
             # the coarsest run of the first ladder may have skipped points
+            # (the adhesive fixed point's walls, detect_kinks False, leave the sub-grid term
+            # out: its inner estimates are charged by the fixed point's own control, which
+            # took it 16-30x over the error on late-onset scenes)
             met = _ladder_estimate(r_area[sb], r_area[sc], r_area[slot],
                                    keep if j == 2 else keep_all, i_first, extrapolate, order,
-                                   rtol, est, kink_first)
+                                   rtol, est, kink_first,
+                                   r_sub[slot] if detect_kinks else no_sub)
             if met or rtol <= 0.0:
                 break
             # refine: the next pair's coarse run does 4^(j-1) times the coarse work of the
