@@ -207,9 +207,9 @@ class HardnessTable:
         lo, hi = self.zeta[0], self.zeta[-1]
         bad = (z < lo * (1 - 1e-12)) | (z > hi * (1 + 1e-12))
         if np.any(bad):
-            raise CallableWallError(f"hardness table covers zeta in [{lo:.6g}, {hi:.6g}] [-]; asked at "
-                             f"zeta = {float(z[bad].ravel()[0])!r} (give a table that spans "
-                             f"the solve's zeta range)")
+            raise CallableWallError(f"hardness table covers zeta in [{lo:.6g}, {hi:.6g}] [-]; "
+                                    f"asked at zeta = {float(z[bad].ravel()[0])!r} (give a "
+                                    f"table that spans the solve's zeta range)")
         return np.exp(np.interp(np.log(np.clip(z, lo, hi)), np.log(self.zeta),
                                 np.log(self.sigma_y)))
 

@@ -829,7 +829,7 @@ def solve_variant_by(grid, variant, G, sa, sigma0, rtol, level, n_damp, out_area
 
 @njit_serial
 def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order, rtol, est,
-                     kink_first, sub_f):
+                     kink_first, sub_f, zero_guard):
     """Error estimate of the returned area from three runs in exact 2:1 ratio; True when it
     meets ``rtol`` (|error| <= rtol A + RTOL_ATOL at every output, or ``rtol`` <= 0).
 
@@ -848,8 +848,9 @@ def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order
     R (the error of F), |d2| for F. Implicit Euler (``order`` 1, not extrapolated) errs by
     a dt + b h^2, both halved per run: the three runs give that error as (d1 - 5 d2)/3, and
     the larger of it and |d2| is taken. ``sub_f`` (the finest run's sub-grid uncertainty
-    of a fast receding wall, first order in h) is added. A non-finite B (the coarsest run) leaves the
-    un-extrapolated measure. Where B skipped the point (``keep_b`` False: it crossed a pair
+    of a fast receding wall, first order in h) is added; no estimate is left below
+    ``zero_guard`` times the smaller of its neighbours'. A non-finite B (the coarsest run)
+    leaves the un-extrapolated measure. Where B skipped the point (``keep_b`` False: it crossed a pair
     of pieces in one step, see :func:`_pair_pieces`; never the first or last point) the
     estimate is the larger of its neighbours' (the error of R is smooth in G; B's value there
     would have to be interpolated, which fails where the error changes fast after the start).
@@ -902,12 +903,13 @@ def _ladder_estimate(area_b, area_c, area_f, keep_b, i_first, extrapolate, order
         if e > rtol * min(max(a, 0.0), 1.0) + RTOL_ATOL:
             met = False
     # a difference of runs can pass through zero at a G where the error does not (their
-    # zeros sit at slightly different G): no estimate below ZERO_GUARD times the smaller of
-    # its neighbours' (measured 0.05x the error at a kink point, issue 33)
+    # zeros sit at slightly different G): no estimate below zero_guard (ZERO_GUARD on a
+    # prescribed wall) times the smaller of its neighbours' (measured 0.05x the error at a
+    # kink point, issue 33)
     e_prev = est[i_first]
-    for k in range(i_first + 1, n - 1):
+    for k in range(i_first + 1, n - 1 if zero_guard > 0.0 else 0):
         e_here = est[k]
-        guard = ZERO_GUARD * min(e_prev, est[k + 1])
+        guard = zero_guard * min(e_prev, est[k + 1])
         e_prev = e_here
         if e_here < guard:
             est[k] = guard
@@ -1233,12 +1235,14 @@ def _solve_grid_tol(G, sa, sigma0, scale_x, scale_t, theta, extrapolate, work_ma
             sc = (j - 1) % 3
             # the coarsest run of the first ladder may have skipped points
             # (the adhesive fixed point's walls, detect_kinks False, leave the sub-grid term
-            # out: its inner estimates are charged by the fixed point's own control, which
-            # took it 16-30x over the error on late-onset scenes)
+            # and the zero guard out: its inner estimates are charged by the fixed point's
+            # own control, which took the sub-grid term 16-30x over the error on late-onset
+            # scenes; its results stay as they were)
             met = _ladder_estimate(r_area[sb], r_area[sc], r_area[slot],
                                    keep if j == 2 else keep_all, i_first, extrapolate, order,
                                    rtol, est, kink_first,
-                                   r_sub[slot] if detect_kinks else no_sub)
+                                   r_sub[slot] if detect_kinks else no_sub,
+                                   ZERO_GUARD if detect_kinks else 0.0)
             if met or rtol <= 0.0:
                 break
             # refine: the next pair's coarse run does 4^(j-1) times the coarse work of the
