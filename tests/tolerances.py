@@ -28,3 +28,12 @@ LOAD_CONSERVATION = 1e-8
 TWIN = 1e-12
 #: areas may overshoot [0, 1] by rounding of the extrapolation
 BOUNDS = 1e-12
+#: random kinked walls (test_random_walls.py): the error estimate must be at least this share
+#: of the error at every returned G (the contract's "estimate within a small factor"; the
+#: estimate's role is to trigger refinement before the error reaches rtol) ...
+RANDOM_WALL_EST_FLOOR_RATIO = 0.5
+#: ... where the error is above this share of the tolerance rtol A + 1e-12: errors far inside
+#: the tolerance cannot break the contract, and right after a kink the extrapolated value
+#: keeps an erratic residual of ~1e-3 of the un-extrapolated error that no three-run ladder
+#: sees (measured: 0.15 rtol with an estimate of 0.015 rtol, seed 4 at rtol 1e-6)
+RANDOM_WALL_EST_JUDGED_FRACTION = 0.2
