@@ -55,10 +55,9 @@ pull_off_stress_Pa
 compression_per_contact_area_Pa (the same quantities for the chosen scene, equal without
 adhesion), status (0 ok, else the package's status code: the area's, or where that is 0 and
 ``--separation`` is given, the separation's, e.g. 22 for a u that underflowed) and, with
-``--pull-off``, pull_off_stress_Pa (0 without adhesion). ``--pull-off`` is refused (exit
-code 2) with a corrected theory (``--theory`` other than persson01) or a yield wall
-(``--hardness``): their pull-off stress is not yet available, and the original theory's
-elastic one beside their areas would be another scene's number.
+``--pull-off``, pull_off_stress_Pa (0 without adhesion): the pull-off stress of the scene as
+solved, its area theory (``--theory``) and yield wall (``--hardness``) included; its estimated
+error is printed beside it.
 
 This module holds the subcommands and :func:`main`; the parser is in
 :mod:`persson_fast.cli_parser`, the settings of ``contact`` (TOML file and flags) in
@@ -362,13 +361,16 @@ def _cmd_contact(args) -> int:
               f"(gamma_eff(1) > 0): {bool(res.sticky[0])}, fixed-point iterations <= "
               f"{int(res.iterations.max())}")
     if s["pull_off"]:
-        # (a corrected theory or a yield wall was refused with the settings: cli_config)
+        # the scene as solved: its theory and yield wall (what pull_off does not serve was
+        # refused with the settings: cli_config)
         t1 = time.perf_counter()
-        sigma_c = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
-                              **{"work_of_adhesion": 0.0, **s["adhesion"]})
-        print(f"pull-off stress: {sigma_c:.5g} Pa ({time.perf_counter() - t1:.3g} s"
-              + (", no adhesion" if not s["adhesion"].get("work_of_adhesion", 0.0) > 0
-                 else "") + ")")
+        sigma_c, po = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
+                                  full_output=True, bracket=False, **s["theory"],
+                                  **yield_wall, **{"work_of_adhesion": 0.0, **s["adhesion"]})
+        how = ("no adhesion" if not s["adhesion"].get("work_of_adhesion", 0.0) > 0
+               else f"+- {po['error_estimate']:.2g} Pa"
+               + ("" if po["converged"] else ", NOT converged to rtol"))
+        print(f"pull-off stress: {sigma_c:.5g} Pa ({how}, {time.perf_counter() - t1:.3g} s)")
     timing = f"time: {elapsed:.3g} s"
     if "compile" in res.timings:
         timing += f" (compile {res.timings['compile']:.3g} s)"

@@ -54,31 +54,33 @@ def _text(value, key):
 
 
 #: the area theories whose pull-off stress ``--pull-off`` computes: persson_fast.pull_off
-#: follows the original theory's elastic contact branch, so a corrected theory or a yield wall
-#: would get the original theory's stress beside its own areas. The one place that refuses
-#: the others (:func:`_refuse_unavailable_pull_off`); extend it when pull_off serves them.
-PULL_OFF_THEORIES = ("persson01",)
+#: follows the contact branch of the scene's own theory (the corrected diffusions yp08 and
+#: wm17 as well as the original; xu24 takes no adhesion, so its pull-off stress is 0), with
+#: its yield wall where ``--hardness`` is given. The one place that refuses what it does
+#: not serve (:func:`_refuse_unavailable_pull_off`).
+PULL_OFF_THEORIES = ("persson01", "yp08", "wm17", "xu24")
 #: whether ``--pull-off`` serves a yield wall (``--hardness``)
-PULL_OFF_WITH_HARDNESS = False
+PULL_OFF_WITH_HARDNESS = True
 
 
 def _refuse_unavailable_pull_off(settings: dict) -> None:
     """``--pull-off`` (or ``pull_off = true``) where the pull-off stress of the scene is not
-    available: a corrected area theory, or a yield wall."""
+    available: an area theory outside :data:`PULL_OFF_THEORIES`, or a yield wall while
+    :data:`PULL_OFF_WITH_HARDNESS` is False."""
     if not settings["pull_off"]:
         return
     theory = settings["theory"].get("theory", "persson01")
     if theory not in PULL_OFF_THEORIES:
         raise CommandError(
-            f"--pull-off is not yet available for the corrected theories: the pull-off stress "
-            f"is computed for {', '.join(PULL_OFF_THEORIES)} only (it follows that theory's "
-            f"contact branch, so beside --theory {theory} areas it would be another theory's "
-            f"number); got --theory {theory}: drop --pull-off, or use --theory persson01")
+            f"--pull-off is not available for --theory {theory}: the pull-off stress is "
+            f"computed for {', '.join(PULL_OFF_THEORIES)} (it follows that theory's contact "
+            f"branch, so beside --theory {theory} areas it would be another theory's number); "
+            f"drop --pull-off, or use one of those theories")
     if settings["hardness"] is not None and not PULL_OFF_WITH_HARDNESS:
         raise CommandError(
-            "--pull-off is not yet available with a yield wall: the pull-off stress is "
-            "computed for elastic contact (without --hardness) only, so beside elastoplastic "
-            "areas it would be the elastic scene's number; drop --pull-off or --hardness")
+            "--pull-off is not available with a yield wall: the pull-off stress is computed "
+            "for elastic contact (without --hardness) only, so beside elastoplastic areas it "
+            "would be the elastic scene's number; drop --pull-off or --hardness")
 
 
 def _resolve_contact(args) -> dict:

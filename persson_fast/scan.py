@@ -148,7 +148,7 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         adhesive scenes' grid, which is exact for their closed form.
     pull_off : bool
         Also compute the pull-off stress of every scene with :func:`~persson_fast.pull_off`
-        (0 without adhesion or where the surfaces are not sticky; NaN, with ``success``
+        (of the scene's theory and yield wall; 0 without adhesion or where the surfaces are not sticky; NaN, with ``success``
         False, where it raises; kept, with ``success`` False, where its error estimate
         exceeds ``pull_off_rtol``). [Pa]
     pull_off_rtol : float or None
@@ -172,8 +172,8 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
     theory : str or sequence of str
         The area theory of the solves (as in :func:`~persson_fast.solve_contact`:
         "persson01", the default, or a corrected one: "yp08" and "wm17" for every scene,
-        "xu24" for scenes without adhesion or hardness; ``pull_off`` with adhesion needs
-        "persson01"). A string is held fixed and recorded in ``attrs``. A
+        "xu24" for scenes without adhesion or hardness; ``pull_off`` follows each scene's
+        own theory and yield wall). A string is held fixed and recorded in ``attrs``. A
         sequence of distinct theories is an axis ``theory`` of the result, after the axes of
         ``params``; each of its entries gives bitwise the numbers of a scan with that theory
         held fixed, and ``attrs["theory"]`` and ``attrs["theory_gamma"]`` are then "". [-]
@@ -302,12 +302,6 @@ def scan(surface, params, pressure, *, e_star=None, work_of_adhesion=0.0, energy
         if corrected[k] and (adhesive[k] or yielding[k]):
             kw = grid.scenes[k][2]
             check_theory_scene(kw["theory"], kw["work_of_adhesion"], kw.get("hardness"))
-            if pull_off and adhesive[k]:
-                raise ValueError(
-                    f"pull_off=True follows the original theory's contact branch only: the "
-                    f"scene {grid.labels[k]} has work_of_adhesion > 0 and theory = "
-                    f"{grid.scenes[k][2]['theory']!r}; scan the pull-off with "
-                    f"theory='persson01'")
     if any(yielding):
         i = yielding.index(True)
         if separation:

@@ -138,12 +138,11 @@ def _solve_scene(surface, solve_kw, pressure, options):
             # of these filter changes between threads)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)
-                if solve_kw.get("hardness") is not None:
-                    raise ValueError("pull_off with a yield wall (hardness) is not available")
-                adhesive_kw = {k: v for k, v in solve_kw.items() if k in SOLVE_PARAMETERS
-                               and k != "hardness"}
+                # the scene as solved: its theory and yield wall included
+                pull_kw = {k: v for k, v in solve_kw.items()
+                           if k in SOLVE_PARAMETERS or k in ("theory", "theory_gamma")}
                 sigma_c, info = _pull_off(surface, rtol=options["pull_off_rtol"],
-                                          full_output=True, bracket=False, **adhesive_kw)
+                                          full_output=True, bracket=False, **pull_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
             out["pull_off"] = out["pull_off_error"] = math.nan
             failures.append(_failure("pull_off", exc))
