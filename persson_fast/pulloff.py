@@ -13,10 +13,11 @@ are re-exported here (``persson_fast.pulloff.<name>`` keeps working).
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
-from ._kernels.status import RTOL_NOT_MET, WALL_JUMP
+from ._kernels.status import RTOL_NOT_MET, STATUS_MESSAGES, WALL_JUMP
 from .adhesion import ADHESION_DEFAULTS, THEORY_CODES, _controls, solve_adhesive_contact
 from .methods import choose_auto, variant_of
 from .results import summarize_status
@@ -214,7 +215,10 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
           coarsest grids [Pa];
         - ``branch``: the descent on the coarsest grid, arrays ``y0``, ``sigma0`` [Pa] and
           ``area`` (A(zeta1)/A0);
-        - ``solves``, ``iterations``, ``unconverged`` (branch points that failed), ``time`` [s];
+        - ``solves``, ``iterations``, ``unconverged`` (branch points that failed), ``lost``
+          (where and why the last one failed; "" if none), ``time`` [s];
+        - ``theory``, ``theory_gamma``, ``hardness``: the scene's area theory and yield wall
+          as used;
         - ``bracket`` (with ``bracket=True``): tensions (lo, hi) [Pa] between which
           :func:`persson_fast.solve_contact` at this ``rtol`` (on the grid
           ``adhesion_zeta(surface, rtol)`` or ``zeta``) stops finding contact: contact at lo,
@@ -317,6 +321,7 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
             raise ValueError("pull_off: give the scene's parameters either in the Scene or as "
                              "keywords, not both; got a Scene and hardness")
         hardness = surface.hardness
+        surface = replace(surface, hardness=None)     # the yield wall goes on as a keyword
     surface, kw = unpack_adhesive_scene(surface, e_star, work_of_adhesion, energy_correction,
                                         detachment_prefactor, "pull_off")
     e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
@@ -355,7 +360,7 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
             "error_parts": {}, "converged": True, "fold": False, "y0": 0.0, "grids": [],
             "extrapolated": [], "branch": {}, "bracket": (0.0, 0.0), "time": 0.0,
             "sticky": False, "reason": "", "rest": [], "theory": theory,
-            "theory_gamma": theory_gamma, "hardness": hardness}
+            "theory_gamma": theory_gamma, "hardness": hardness, "lost": ""}
     if dg == 0.0:
         info["reason"] = "not sticky: no adhesion (work_of_adhesion = 0)"
         return 0.0, info, None
@@ -518,10 +523,19 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
                                f"smaller rtol or a finer zeta grid")
     error = err_grid + err_t + err_tail + err_inner + err_flag
     converged = bool(error <= rtol * sigma_c and not lost)
+    failed = [p for p in samples + used if not p["converged"]]
+    why_lost = ""
+    if failed:
+        code = int(failed[-1]["status"])
+        why_lost = (f"at y0 = {failed[-1]['y0']:.4g} Pa, last diffusion solve: "
+                    f"{STATUS_MESSAGES.get(code, 'flagged')} (code {code})" if code else
+                    f"at y0 = {failed[-1]['y0']:.4g} Pa, its fixed point did not converge")
+    info["lost"] = why_lost
     warning = None
     if not converged:
         warning = (f"pull_off: estimated error {error:.3g} Pa of sigma_c = {sigma_c:.6g} Pa "
-                   f"exceeds rtol * sigma_c" + ("; a branch point failed" if lost else ""))
+                   f"exceeds rtol * sigma_c" + (f"; a branch point failed ({why_lost})"
+                                                if lost else ""))
     info["solves"] += sum(b.solves for b in branches + rest_branches)
     info["iterations"] += sum(p["iterations"] for p in samples + used) + check["iterations"]
     info["unconverged"] = sum(not p["converged"] for p in samples) + sum(
