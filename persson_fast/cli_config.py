@@ -88,7 +88,8 @@ def _resolve_contact(args) -> dict:
     cfg = _load_toml(args.config) if args.config else {}
     known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
                  "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off",
-                 "theory", "theory_gamma", "separation", "hardness", "hardness_exponent"}
+                 "theory", "theory_gamma", "separation", "hardness", "hardness_exponent",
+                 "gaps"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -169,6 +170,8 @@ def _resolve_contact(args) -> dict:
     method = args.method or _text(cfg.get("method", "auto"), "method")
     rtol = args.rtol if args.rtol is not None else _number(cfg.get("rtol", 1e-6), "rtol")
     csv_path = args.csv or (_text(cfg["csv"], "csv") if "csv" in cfg else None)
+    gaps_path = getattr(args, "gaps", None) or (_text(cfg["gaps"], "gaps") if "gaps" in cfg
+                                                else None)
     adhesion = {}
     for key in ("work_of_adhesion", "energy_correction", "detachment_prefactor"):
         value = getattr(args, key)
@@ -217,7 +220,7 @@ def _resolve_contact(args) -> dict:
     settings = {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
                 "method": method, "rtol": rtol, "csv": csv_path, "adhesion": adhesion,
                 "pull_off": want_pull_off, "theory": theory, "separation": want_separation,
-                "hardness": hardness}
+                "hardness": hardness, "gaps": gaps_path}
     _refuse_unavailable_pull_off(settings)
     return settings
 

@@ -158,6 +158,36 @@ class GapDistribution:
     success: bool
     message: str
     timings: dict = field(default_factory=dict)
+    _components: tuple = field(default=(), repr=False, compare=False)
+
+    def density_at(self, gaps) -> np.ndarray:
+        """The density at other gaps (the same components as ``density``): (n_p, n). [1/m]
+
+        Parameters
+        ----------
+        gaps : array_like, shape (n,) -- gaps >= 0, finite. [m]
+        """
+        u = _check_gaps(gaps, minimum=1)
+        return np.array([mix.density(u) if mix.weight.size else np.zeros(u.size)
+                         for mix in self._components])
+
+    def cumulative(self, gaps) -> np.ndarray:
+        """Probability that the gap is at most u, the contact (u = 0) included: (n_p, n),
+        exact for the components (no grid), 1 beyond the last of them. [-]
+
+        Parameters
+        ----------
+        gaps : array_like, shape (n,) -- gaps >= 0, finite. [m]
+        """
+        u = _check_gaps(gaps, minimum=1)
+        out = np.empty((len(self._components), u.size))
+        for k, mix in enumerate(self._components):
+            cont = mix.cdf(u) if mix.weight.size else np.zeros(u.size)
+            # the continuous part's weight is 1 - A1 to its quadrature error: scaled to it
+            total = mix.total
+            scale = (1.0 - self.contact_fraction[k]) / total if total > 0 else 0.0
+            out[k] = self.contact_fraction[k] + cont * scale
+        return out
 
     def __repr__(self) -> str:
         from .results import _span, _timings
@@ -169,6 +199,16 @@ class GapDistribution:
                 f"  contact_fraction  {_span(self.contact_fraction, '')}\n"
                 f"  mean              {_span(self.mean, 'm')}\n"
                 f"  timings: {_timings(self.timings)}>")
+
+
+def _check_gaps(gaps, minimum=2) -> np.ndarray:
+    """Gaps [m]: finite, >= 0, strictly increasing, at least ``minimum`` of them."""
+    u = as_float_array(gaps, "gaps", "m", ndim=(0, 1)).reshape(-1)
+    check_finite(u, "gaps", "m")
+    if u.size < minimum or np.any(u < 0) or np.any(np.diff(u) <= 0):
+        raise ValueError(f"gaps must hold at least {minimum} value{'s' if minimum > 1 else ''} "
+                         f">= 0, strictly increasing [m]; got gaps = {u!r}")
+    return u
 
 
 class _Inverse:
@@ -433,13 +473,7 @@ def gap_distribution(surface, pressure, *, e_star=None, energy_correction=None, 
                          f"surfaces are apart and every gap is infinite; tension needs "
                          f"adhesion, which is not derived here); got pressure[{i}] = "
                          f"{float(p[i])!r}")
-    user_gaps = None
-    if gaps is not None:
-        user_gaps = as_float_array(gaps, "gaps", "m", ndim=(1,))
-        check_finite(user_gaps, "gaps", "m")
-        if user_gaps.size < 2 or np.any(user_gaps < 0) or np.any(np.diff(user_gaps) <= 0):
-            raise ValueError(f"gaps must hold at least two values >= 0, strictly increasing "
-                             f"[m]; got gaps = {user_gaps!r}")
+    user_gaps = None if gaps is None else _check_gaps(gaps)
     code = GAP_SHAPES[shape]
     sep = solve_separation(surface, p, e_star=e, energy_correction=energy_correction)
     inverse = _Inverse(surface, e)
@@ -508,4 +542,5 @@ def gap_distribution(surface, pressure, *, e_star=None, energy_correction=None, 
         separation=np.asarray(sep.separation, dtype=float), weight_error=weight_error,
         mean_error=mean_error, error_estimate=estimate, shape=shape,
         energy_correction=None if energy_correction is None else float(energy_correction),
-        status=status, success=success, message=message, timings=timings)
+        status=status, success=success, message=message, timings=timings,
+        _components=tuple(fine))

@@ -158,7 +158,7 @@ def test_scene_and_repr():
     ({"pressure": 0.0}, r"pressure must be > 0 for a gap distribution \[Pa\].*pressure\[0\] = 0.0"),
     ({"pressure": [1e6, -1.0]}, r"pressure\[1\] = -1.0"),
     ({"pressure": np.nan}, r"pressure must be finite \[Pa\]"),
-    ({"gaps": [0.0, 2e-6, 1e-6]}, r"gaps must hold at least two values >= 0, strictly "
+    ({"gaps": [0.0, 2e-6, 1e-6]}, r"gaps must hold at least 2 values >= 0, strictly "
                                   r"increasing \[m\]"),
     ({"gaps": [-1e-9, 1e-6]}, r"gaps must hold"),
     ({"gaps": [0.0]}, r"gaps must hold"),
@@ -180,3 +180,47 @@ def test_adhesion_and_yield_are_refused():
         pf.gap_distribution(pf.Scene(XU, e_star=1e9, hardness=1e8), 1e6)
     with pytest.raises(ValueError, match="e_star"):
         pf.gap_distribution(XU, 1e6)
+
+
+def test_density_at_and_cumulative():
+    """density_at gives the density at other gaps (bitwise where they coincide); cumulative is
+    the exact probability of a gap <= u, the contact included: the contact fraction at 0,
+    1 far out, and its differences match the trapezoid masses of a fine grid."""
+    surface, e, p = SCENES["seed"]
+    g = pf.gap_distribution(surface, p, e_star=e)
+    np.testing.assert_array_equal(g.density_at(g.gaps), g.density)
+    c = g.cumulative(np.array([0.0, 1.0]))
+    np.testing.assert_array_equal(c[:, 0], g.contact_fraction)
+    np.testing.assert_allclose(c[:, 1], 1.0, rtol=0, atol=1e-15)
+    mass = np.diff(g.cumulative(g.gaps), axis=1)
+    trap = 0.5 * (g.density[:, 1:] + g.density[:, :-1]) * np.diff(g.gaps)
+    assert np.max(np.abs(np.sum(trap - mass, axis=1))) <= 1e-3
+    with pytest.raises(ValueError, match="gaps must hold at least 1 value"):
+        g.cumulative([-1.0])
+
+
+def test_scan_gaps():
+    """scan(gaps=True): every scene's distribution on the union of their default grids, the
+    numbers of gap_distribution (density_at on that axis); NaN where p <= 0; a given axis
+    taken as it is; scenes with adhesion refused before solving."""
+    pytest.importorskip("xarray")
+    params = {"hurst": [0.7, 0.8], "q0": 1e4, "q1": 1e6, "h_rms": H_RMS}
+    p = np.array([0.0, 1e6, 1e7])
+    ds = pf.scan(pf.SelfAffine, params, p, e_star=1e9, gaps=True, progress=False)
+    assert ds.gap_density.dims == ("hurst", "pressure", "gap") and bool(ds.success.all())
+    for hurst in (0.7, 0.8):
+        g = pf.gap_distribution(pf.SelfAffine(hurst=hurst, q0=1e4, q1=1e6, h_rms=H_RMS),
+                                p[1:], e_star=1e9)
+        got = ds.gap_density.sel(hurst=hurst).values
+        assert np.all(np.isnan(got[0]))
+        np.testing.assert_array_equal(got[1:], g.density_at(ds.gap.values))
+        np.testing.assert_array_equal(ds.mean_gap.sel(hurst=hurst).values[1:], g.mean)
+        assert np.all(ds.gap_weight_error.sel(hurst=hurst).values[1:] <= 1e-3)
+    axis = np.linspace(0.0, 20 * H_RMS, 4001)
+    ds2 = pf.scan(pf.SelfAffine, params, p, e_star=1e9, gaps=axis, progress=False)
+    np.testing.assert_array_equal(ds2.gap.values, axis)
+    with pytest.raises(ValueError, match="gaps needs scenes without adhesion"):
+        pf.scan(pf.SelfAffine, params, p, e_star=1e9, work_of_adhesion=0.05, gaps=True,
+                progress=False)
+    with pytest.raises(ValueError, match="gaps must be True, False or an array of gaps"):
+        pf.scan(pf.SelfAffine, params, p, e_star=1e9, gaps=[2.0, 1.0], progress=False)
