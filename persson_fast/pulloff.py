@@ -1,6 +1,7 @@
 """The pull-off stress: the contact branch of one adhesive scene followed to its end.
 
-:func:`pull_off` follows the contact branch parametrised by y0 = sigma0 + sigma_a(1) (at
+:func:`pull_off` follows the contact branch (of the original theory, of the corrected
+theories yp08 and wm17, and with a yield wall) parametrised by y0 = sigma0 + sigma_a(1) (at
 fixed sigma0 the fixed point of seed Eqs. 8-9 is nearly singular along the flat end of the
 branch; at fixed y0 it is regular), with a fixed-point loop in Python around the compiled
 diffusion solve (one scene, a few dozen branch points: the loop is not the cost), on nested
@@ -312,7 +313,14 @@ def pull_off(surface, *, e_star=None, work_of_adhesion=None, energy_correction=N
     end of that model's contact branch at fixed sigma_Y(zeta): the yield wall acts at each
     nominal stress as solve_contact has it, not as the memory of an earlier, higher load
     (unloading a plastically flattened contact is not modelled). The stickiness test, the
-    nested grids, the extrapolation and the error estimate are those above.
+    nested grids, the extrapolation and the error estimate are those above. With a yield wall
+    the two-wall solver cannot resolve a start closer to the detachment wall than a small
+    fraction of the strip between the walls (seed scene, sigma_Y = 2e8 Pa: from y0 = 1.1e4 Pa
+    = 0.8 % of sigma_a(1) down); the descent stops there and what is left of the branch is
+    charged to the estimate (``tail``, about y0 there): seed scene, sigma_Y = 2e8 Pa,
+    1.42899e6 +- 1.4e3 Pa at rtol 1e-4, flagged (converged False) where that exceeds rtol.
+    Measured (seed scene, rtol 1e-4, 2-core machine): yp08 1.06037e6 +- 80 Pa, wm17
+    1.12908e6 +- 49 Pa, 17-29 s with the bracket; at rtol 1e-3 about 1-2 s each.
     """
     from .scene import Scene, _is_default, unpack_adhesive_scene
 
