@@ -17,7 +17,7 @@ import numpy as np
 
 from ._kernels.adhesion import corrected_times, yield_detachment_update
 from ._kernels.status import (BAD_INPUT, FAR_LEAK, GRID_CAP, NEGATIVE_DENSITY, NONFINITE,
-                              RTOL_NOT_MET, START_UNRESOLVED, WALL_JUMP)
+                              NOT_CONVERGED, RTOL_NOT_MET, START_UNRESOLVED, WALL_JUMP)
 from .adhesion import _run
 from ._kernels.similarity import SMOOTH_WALL
 from .results import summarize_status
@@ -526,7 +526,7 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
             # a resolution flag of a loose solve (e.g. the far end of the grid reached):
             # again with a tighter tolerance
             inner = max(0.1 * inner, PULL_OFF_INNER_MIN)
-        if status[0] not in (0, WALL_JUMP, RTOL_NOT_MET):
+        if status[0] not in (0, WALL_JUMP, RTOL_NOT_MET, NOT_CONVERGED):
             raise RuntimeError(f"pull_off: the contact problem failed at p_nom = 0 Pa "
                                f"({summarize_status(status)[1]}); try a smaller rtol or a "
                                f"finer zeta grid")
@@ -534,7 +534,11 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
         elastic = area - outs[8][0] if branch.has_yield else area
         x = branch.state(outs[1][0], area)
         g1, bar = branch.adhesion_at_one(area, outs[7][0], elastic)
-        if area[-1] <= 0.0 or x[0] <= 0.0:
+        if status[0] == NOT_CONVERGED:
+            # the compiled fixed point stopped short (seen with a yield wall at tight
+            # tolerances): its last iterate starts the branch's own iteration, which decides
+            sticky = None
+        elif area[-1] <= 0.0 or x[0] <= 0.0:
             sticky = False
         elif g1 - bar > 0.0:
             sticky = True
