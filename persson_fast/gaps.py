@@ -69,6 +69,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -79,6 +80,12 @@ from ._validation import as_float_array, check_finite
 from .scene import _check_rtol
 from .separation import (KFUN_STEPS_PER_UNIT, KFUN_X_LOW, _scene, kfun_table,
                          solve_separation)
+
+if TYPE_CHECKING:  # names of the type hints only
+    from numpy.typing import ArrayLike
+
+    from .scene import Scene
+    from .surface_base import Surface
 
 __all__ = ["gap_distribution", "GapDistribution", "GAP_SHAPES"]
 
@@ -160,7 +167,7 @@ class GapDistribution:
     timings: dict = field(default_factory=dict)
     _components: tuple = field(default=(), repr=False, compare=False)
 
-    def density_at(self, gaps) -> np.ndarray:
+    def density_at(self, gaps: ArrayLike) -> np.ndarray:
         """The density at other gaps (the same components as ``density``): (n_p, n). [1/m]
 
         Parameters
@@ -171,7 +178,7 @@ class GapDistribution:
         return np.array([mix.density(u) if mix.weight.size else np.zeros(u.size)
                          for mix in self._components])
 
-    def cumulative(self, gaps) -> np.ndarray:
+    def cumulative(self, gaps: ArrayLike) -> np.ndarray:
         """Probability that the gap is at most u, the contact (u = 0) included: (n_p, n),
         exact for the components (no grid), 1 beyond the last of them. [-]
 
@@ -401,8 +408,10 @@ def _default_grid(mix: _Mixture, rtol: float):
     return u
 
 
-def gap_distribution(surface, pressure, *, e_star=None, energy_correction=None, gaps=None,
-                     shape="truncated", rtol=1e-3) -> GapDistribution:
+def gap_distribution(surface: Surface | Scene, pressure: ArrayLike, *,
+                     e_star: float | None = None, energy_correction: float | None = None,
+                     gaps: ArrayLike | None = None, shape: str = "truncated",
+                     rtol: float = 1e-3) -> GapDistribution:
     """Probability distribution of the interfacial gap at nominal pressures (no adhesion).
 
     Parameters
