@@ -3,7 +3,7 @@
 Usage::
 
     python -m benchmarks.contract_table                # rtol 1e-3 ... 1e-8 (a few minutes)
-    python -m benchmarks.contract_table --quick        # rtol 1e-3 and 1e-6 only
+    python -m benchmarks.contract_table --quick        # rtol 1e-3 and 1e-6, 20 random walls
     python -m benchmarks.contract_table --out DIR      # write DIR/CONTRACT.md
 
 The contract (issue 12): a result is within rtol, |A - A_ref| <= rtol A_ref + 1e-12 at every
@@ -21,7 +21,12 @@ scene of :data:`SCENES` and every rtol the table gives
 
 A second table does the same for the adhesive fixed point of a self-affine scene whose
 gamma_eff changes sign, against the fine-grid reference of
-``tests/test_adhesive_error_control.py``. The file is written atomically (a temporary file in
+``tests/test_adhesive_error_control.py``. A third (:func:`random_wall_stats`) runs every
+method and ``auto`` on random kinked walls (``benchmarks/random_walls.py``, ``--walls N``, as
+samples and as callables, rtol 1e-4 ... 1e-8) against the kink-to-kink quadrature of
+:mod:`persson_fast._reference_walls`: per method and rtol the share of flagged results, how
+many of the flags were in fact within rtol, the silent misses and the least estimate/error.
+The file is written atomically (a temporary file in
 the same folder, then ``os.replace``).
 
 References (how each is built and checked is printed in the header of the table):
@@ -291,6 +296,62 @@ def adhesive_rows(rtols, repeats=REPEATS):
     return out
 
 
+#: random kinked walls (benchmarks/random_walls.py): how many, and their rtols
+RANDOM_WALLS = 100
+RANDOM_WALLS_QUICK = 20
+RANDOM_RTOLS = (1e-4, 1e-5, 1e-6, 1e-7, 1e-8)
+
+
+def random_wall_stats(n_walls, rtols, methods, first_seed=0):
+    """The contract on ``n_walls`` random kinked walls (samples and callables) per method and
+    rtol: dict (method, rtol) -> counts of probes, flags, flags whose result was in fact
+    within rtol, silent misses (status 0 outside rtol), NaN results, refusals, the least
+    estimate/error over the returned G where the error is above 0.2 of the tolerance and
+    ten times the reference's uncertainty, and the total solve time; plus the list of the
+    misses. The reference is the kink-to-kink quadrature of persson_fast._reference_walls."""
+    from benchmarks.random_walls import walls
+
+    ws = walls(n_walls, first_seed)
+    stats = {(m, r): dict(n=0, flagged=0, flagged_within=0, miss=0, nan=0, refused=0,
+                          est_min=None, seconds=0.0) for m in methods for r in rtols}
+    misses = []
+    for w in ws:
+        for form in ("samples", "callable"):
+            sa = w.samples() if form == "samples" else w.callable()
+            for m in methods:
+                for rtol in rtols:
+                    st_ = stats[(m, rtol)]
+                    t0 = time.perf_counter()
+                    try:
+                        r = pf.solve_diffusion(w.G, w.sigma0, sa, method=m, rtol=rtol,
+                                               parallel=False)
+                    except ValueError:
+                        st_["refused"] += 1
+                        continue
+                    st_["seconds"] += time.perf_counter() - t0
+                    st_["n"] += 1
+                    area, est, status = r.area[0], r.error_estimate[0], int(r.status[0])
+                    if not np.all(np.isfinite(area)):
+                        st_["nan"] += 1
+                    err = np.abs(area - w.ref)
+                    tol = rtol * w.ref + ATOL
+                    within = bool(np.all(err <= tol))
+                    if status != 0:
+                        st_["flagged"] += 1
+                        st_["flagged_within"] += int(within)
+                    elif not within:
+                        st_["miss"] += 1
+                        misses.append(f"{m}, wall seed {w.seed} ({w.n_kinks} kinks) as "
+                                      f"{form}, rtol {rtol:g}: {np.max(err / tol):.3g} rtol, "
+                                      f"status 0")
+                    judged = (err > 0.2 * tol) & (err > 10.0 * w.ref_unc)
+                    if np.any(judged):
+                        ratio = float(np.min(est[judged] / err[judged]))
+                        if st_["est_min"] is None or ratio < st_["est_min"]:
+                            st_["est_min"] = ratio
+    return stats, misses
+
+
 def _fmt(x, spec=".2g"):
     return "-" if x is None else format(x, spec)
 
@@ -315,6 +376,9 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="rtol 1e-3 and 1e-6 only")
     ap.add_argument("--out", default=str(HERE), help="folder of CONTRACT.md")
+    ap.add_argument("--walls", type=int, default=RANDOM_WALLS,
+                    help=f"random kinked walls (default {RANDOM_WALLS}; --quick: "
+                         f"{RANDOM_WALLS_QUICK})")
     args = ap.parse_args(argv)
     rtols = RTOLS_QUICK if args.quick else RTOLS
     adh_rtols = RTOLS_QUICK[:1] + (1e-4,) if args.quick else ADHESIVE_RTOLS
@@ -364,6 +428,25 @@ def main(argv=None) -> int:
         adh.append(f"| {rtol:g} | {p:g} | {e:.2g} | {_fmt(res['est_over_actual'])} | {s} | "
                    f"{v} | {_ms(res['seconds'])} |")
 
+    n_walls = RANDOM_WALLS_QUICK if args.quick else args.walls
+    t_rand = time.perf_counter()
+    rstats, rmisses = random_wall_stats(n_walls, RANDOM_RTOLS, methods + ("auto",))
+    t_rand = time.perf_counter() - t_rand
+    print(f"random walls: {t_rand:.0f} s", flush=True)
+    rand = ["| method | rtol | probes | flagged | flagged, in fact within rtol | MISS | "
+            "least est/actual | mean time [ms] |", "|---|---|---|---|---|---|---|---|"]
+    for (m, rtol), st_ in rstats.items():
+        n = st_["n"]
+        if n == 0:
+            rand.append(f"| {m} | {rtol:g} | 0 | - | - | - | - | - |")
+            continue
+        fl = st_["flagged"]
+        share = f"{fl} ({100.0 * fl / n:.0f} %)"
+        inside = f"{st_['flagged_within']} of {fl}" if fl else "-"
+        rand.append(f"| {m} | {rtol:g} | {n} | {share} | {inside} | {st_['miss']} | "
+                    f"{_fmt(st_['est_min'])} | {_ms(st_['seconds'] / n)} |")
+        counts["MISS"] += st_["miss"]
+    misses += [f"random walls: {x}" for x in rmisses]
     total = time.perf_counter() - t_start
     summary = (f"ok {counts['ok']}, flagged {counts['flagged']}, MISS {counts['MISS']}, "
                f"n/a {counts['n/a']}")
@@ -396,6 +479,19 @@ def main(argv=None) -> int:
             "tests/test_adhesive_error_control.py (the fixed point on 160 zeta points per "
             "decade, inner rtol 1e-8; uncertainty 6.3e-8, 5.2e-7, 2.0e-8 absolute, so at rtol "
             "1e-5 error/rtol carries up to 0.27 from the reference itself).", ""] + adh
+    tail += ["", "## Random kinked walls", "",
+             f"{n_walls} walls of `benchmarks/random_walls.py` (seeds 0 ... {n_walls - 1}: "
+             "continuous, piecewise linear, 1-4 kinks at random places, random values, "
+             "pressures and stress scales; output times at the breakpoints, the midpoints and an "
+             "eighth into each piece), each as samples and as a callable (np.interp of the "
+             "breakpoints, kinks not declared), so 2 probes per wall, method and rtol, "
+             f"against `persson_fast._reference_walls` (the exact linear-wall kernel carried "
+             "from kink to kink by Gauss-Legendre quadrature, NumPy/SciPy only; its uncertainty, "
+             "from panels twice as wide, below 1e-11 relative). flagged = status != 0, with how "
+             "many of those were in fact within rtol; MISS = status 0 outside rtol at some "
+             "returned G; least est/actual = the smallest error_estimate / |A - A_ref| over "
+             "the returned G where the error is above 0.2 of the tolerance; mean time per "
+             f"probe (one thread). ({t_rand:.0f} s in all.)", ""] + rand
     tail += ["", "## Every MISS", ""]
     tail += [f"- {m}" for m in misses] if misses else ["None."]
     if nans:

@@ -38,6 +38,7 @@ from .scan import ScanWarning, scan
 from .scene import Scene
 from .separation import (SeparationResult, decay_length, pressure_at_separation,
                          solve_separation)
+from .gaps import GapDistribution, gap_distribution
 
 
 __all__ = [
@@ -80,5 +81,7 @@ __all__ = [
     "decay_length",
     "pressure_at_separation",
     "solve_separation",
+    "GapDistribution",
+    "gap_distribution",
     "__version__",
 ]

@@ -374,15 +374,19 @@ def _analytic_linear(G, rows, p):
 LOST_CONTACT_RTOL = (1e-4, 1e-3)
 
 
-def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
+def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol,
+                       theory="persson01", theory_gamma=None, hardness=None):
     """Flag tensions where the fixed point separated although the contact branch reaches them.
 
     Near the pull-off stress the end of the contact branch on one zeta grid falls short of
     the converged one (a second-order grid error; about 0.6 % of sigma_c on the seed scene at
-    rtol 1e-4), and the fixed point at fixed p_nom is nearly singular there. When a tension
-    ends separated, :func:`persson_fast.pull_off` (at rtol clipped to LOST_CONTACT_RTOL) says
-    whether contact exists there; such pressures get status LOST_CONTACT, and so do those
-    within its error estimate of sigma_c, where separation cannot be confirmed.
+    rtol 1e-4), and the fixed point at fixed p_nom is nearly singular there (with the
+    corrected theories it loses the branch earlier: seed scene, yp08, from about 0.9 sigma_c
+    at rtol 1e-4). When a tension ends separated, :func:`persson_fast.pull_off` of the same
+    scene (theory and yield wall included; at rtol clipped to LOST_CONTACT_RTOL) says whether
+    contact exists there; such pressures get status LOST_CONTACT, and so do those within its
+    error estimate of sigma_c, where separation cannot be confirmed. A corrected theory or a
+    yield wall is checked at the looser bound of LOST_CONTACT_RTOL.
 
     pull_off's own warning (estimate above its rtol) is not issued here: the private
     :func:`persson_fast.pulloff._pull_off` returns it instead, and its error estimate
@@ -397,13 +401,21 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol):
     if not np.any(sep):
         return res
     rtol_c = min(max(rtol, LOST_CONTACT_RTOL[0]), LOST_CONTACT_RTOL[1])
+    if theory != "persson01" or hardness is not None:
+        # their branch points cost more (the corrected times; the two-wall solver): the check
+        # runs at the looser bound, which only widens the flagged band (seed scene, yp08: 1.3 s
+        # against 25 s at 1e-4)
+        rtol_c = LOST_CONTACT_RTOL[1]
     try:
         sigma_c, info, _ = _pull_off(surface, e_star=e_star, work_of_adhesion=dg,
                                      energy_correction=energy_correction,
-                                     detachment_prefactor=beta, rtol=rtol_c, bracket=False)
+                                     detachment_prefactor=beta, theory=theory,
+                                     theory_gamma=theory_gamma, hardness=hardness,
+                                     rtol=rtol_c, bracket=False)
     except RuntimeError as exc:
-        note = f"; separated tensions not checked against the pull-off stress ({exc})"
-        return replace(res, message=res.message + note)
+        # the end of the branch is unknown: no separated tension can be confirmed
+        return _flag_rows(res, sep, f"; separated tensions not checked against the pull-off "
+                                    f"stress ({exc})")
     lost = sep & (res.pressure > -(sigma_c + info["error_estimate"]))
     if not np.any(lost):
         return res
@@ -417,19 +429,6 @@ def _flag_rows(res, rows, note):
     status = np.where(rows, LOST_CONTACT, res.status)
     success, message = summarize_status(status)
     return replace(res, status=status, success=success, message=message + note)
-
-
-def _flag_unconfirmed_separation(res, why):
-    """Flag separated tensions of a scene whose pull-off stress is not computed here (a
-    corrected theory, a yield wall: :func:`persson_fast.pull_off` follows the original
-    theory's elastic branch), so the end of their contact branch cannot be checked: a
-    separated tension gets status LOST_CONTACT (contact not excluded) instead of a silent
-    A = 0. ``why`` ends the message."""
-    sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
-    if not np.any(sep):
-        return res
-    return _flag_rows(res, sep, f"; separated tensions are not checked against a pull-off "
-                                f"stress: {why}")
 
 
 def _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction, beta, method,
@@ -462,7 +461,8 @@ def _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction, b
         zeros = np.zeros_like(res.area_zeta)
         return replace(res, sigma_a=zeros, gamma_eff=zeros.copy(), elastic_energy_zeta=None,
                        sticky=None)
-    return _flag_unconfirmed_separation(res, "pull_off has no yield wall")
+    return _flag_lost_contact(res, surface, e, dg, energy_correction, beta, rtol, theory,
+                              theory_gamma, hardness)
 
 
 def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
@@ -528,13 +528,12 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
         option), or a corrected one, "yp08" (Yang & Persson 2008), "wm17" (Wang & Mueser
         2017), "xu24" (Xu et al. 2024), see ``persson_fast.theories``. Without walls
         the corrected theories are a near-closed form (``method`` "auto" or "analytic";
-        relative accuracy ~1e-12 whatever ``rtol``). With adhesion, a yield wall
-        (``hardness``) or both, yp08 and wm17 are the corrected diffusion dT/dG = S(A)
-        solved together with the walls (error-controlled to ``rtol`` like the original;
-        ``result.G`` stays the original G); with adhesion, separated tensions then come
-        back flagged (status 9), since ``pull_off`` follows the original theory only. xu24
-        (an algebraic relation at full magnification) raises a ValueError with adhesion or
-        a hardness. ``result.theory`` records the theory.
+        relative accuracy ~1e-12 whatever ``rtol``). With adhesion, yp08 and wm17 are the
+        corrected diffusion dT/dG = S(A) solved together with the detachment stress
+        (error-controlled to ``rtol`` like the original; ``result.G`` stays the original
+        G); separated tensions are checked against that theory's ``pull_off`` as for the
+        original (see Notes). xu24 (full magnification, no walls) with adhesion raises a
+        ValueError. ``result.theory`` records the theory.
     theory_gamma : float or None
         gamma of the corrected theory; None (default) takes its published default (0.42
         for yp08 and xu24, 5/9 for wm17), which ``result.theory_gamma`` records. Range
@@ -546,13 +545,13 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
         between its points, which must span the zeta range). Then ``result.area`` is the
         real contact area A_el + A_pl (elastic plus yielded, both in contact),
         ``result.elastic_area`` and ``result.plastic_area`` the two parts (and
-        ``plastic_area_zeta`` its profile). Without adhesion, a constant one is the exact
-        two-wall series (method "auto" or "analytic", error 0); a scale-dependent one (or
-        method="strip") the two-wall solver on the wall sigma_Y(zeta(G)), error-controlled
-        to rtol in the real area (``persson_fast.plasticity``, ``persson_fast.strip``).
-        With adhesion (or a corrected theory) the fixed point runs around the two-wall
-        solver ("strip"), with ``result.plastic_load`` the load of the yielded area.
-        Nominal pressures must lie below sigma_Y(1) (a ValueError otherwise). None
+        ``plastic_area_zeta`` its profile). A constant one is the exact two-wall series
+        (method "auto" or "analytic", error 0); a scale-dependent one (or method="strip")
+        the two-wall solver on the wall sigma_Y(zeta(G)), error-controlled to rtol in the
+        real area (``persson_fast.plasticity``, ``persson_fast.strip``). With
+        adhesion, or with theory "yp08"/"wm17", the adhesive fixed point runs the two-wall
+        solver (method "auto" or "strip"), and separated tensions are checked against
+        ``pull_off`` with the same yield wall. Nominal pressures below sigma_Y(1). None
         (default): elastic, bitwise as before.
 
     Returns
@@ -564,10 +563,11 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     With adhesion the detachment stress is the fixed point of seed Eqs. 8-9, solved per
     pressure in compiled code (see ``persson_fast.adhesion``); nominal tension (p < 0) is
     allowed, and below the pull-off stress the area is 0. A tension that ends separated
-    although :func:`pull_off` finds contact there (the fixed point on the zeta grid lost the
-    end of the contact branch), or cannot exclude it within its error estimate, gets
-    status 9. The default zeta grid is then :func:`persson_fast.adhesion_zeta`
-    (finer, and refined near zeta = 1).
+    although :func:`pull_off` (of the same theory and yield wall) finds contact there (the
+    fixed point on the zeta grid lost the end of the contact branch), or cannot exclude it
+    within its error estimate, gets status 9; so does every separated tension where
+    pull_off raises (the message says why). The default zeta grid is then
+    :func:`persson_fast.adhesion_zeta` (finer, and refined near zeta = 1).
     Without adhesion the whole surface enters through G(zeta) (seed Eqs. 4-7); the area is
     erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the
     diffusion numerically (the same kernel the adhesive problem uses).
@@ -622,11 +622,8 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
                                      rtol=rtol, parallel=parallel, controls=adhesion_controls,
                                      zeta_given=zeta is not None, theory=theory,
                                      theory_gamma=theory_gamma)
-        if theory == "persson01":
-            res = _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol)
-        else:
-            res = _flag_unconfirmed_separation(
-                res, f"pull_off follows the original theory, not theory={theory!r}")
+        res = _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol,
+                                 theory, theory_gamma)
         return replace(res, separation_source=ADHESION_REFUSED.format(
             where="solve_contact", dg=float(dg)))
     p = _check_pressure(pressure, allow_negative=False)

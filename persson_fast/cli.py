@@ -54,13 +54,16 @@ pull_off_stress_Pa
 ``contact --csv FILE`` writes pressure_Pa, area, force_per_contact_area_Pa,
 compression_per_contact_area_Pa (the same quantities for the chosen scene, equal without
 adhesion), status (0 ok, else the package's status code: the area's, or where that is 0 and
-``--separation`` is given, the separation's, e.g. 22 for a u that underflowed), then with
-``--hardness`` elastic_area and plastic_area, with ``--separation`` separation_m,
-stiffness_Pa_per_m and elastic_energy_J_per_m2, and with ``--pull-off`` pull_off_stress_Pa
-(0 without adhesion). ``--pull-off`` is refused (exit code 2) with a corrected theory
-(``--theory`` other than persson01) or a yield wall (``--hardness``): their pull-off stress
-is not yet available, and the original theory's elastic one beside their areas would be
-another scene's number.
+``--separation`` is given, the separation's, e.g. 22 for a u that underflowed) and, with
+``--pull-off``, pull_off_stress_Pa (0 without adhesion): the pull-off stress of the scene as
+solved, its area theory (``--theory``) and yield wall (``--hardness``) included; its estimated
+error is printed beside it.
+
+``contact --gaps FILE`` writes the distribution of interfacial gaps
+(:func:`persson_fast.gap_distribution`, elastic scenes of the original theory) at every
+pressure > 0, one row per (pressure, gap): pressure_Pa, gap_m, density_per_m, cumulative
+(the probability of a gap <= gap_m, the contact included), contact_fraction, mean_gap_m
+(= the separation u(p)) and status; written with the --csv file, atomically.
 
 This module holds the subcommands and :func:`main`; the parser is in
 :mod:`persson_fast.cli_parser`, the settings of ``contact`` (TOML file and flags) in
@@ -298,11 +301,16 @@ def _cmd_contact(args) -> int:
     s = _resolve_contact(args)
     surface = _make_surface(s["model"], s["params"])
     e_star = s["e_star"]
-    if s["separation"] and (s["adhesion"].get("work_of_adhesion", 0.0) > 0
+    elastic_original = not (s["adhesion"].get("work_of_adhesion", 0.0) > 0
                             or s["theory"].get("theory", "persson01") != "persson01"
-                            or s["hardness"] is not None):
+                            or s["hardness"] is not None)
+    if s["separation"] and not elastic_original:
         raise CommandError("--separation is available for elastic scenes without adhesion and "
                            "the original theory (persson01) only: the separation is not "
+                           "derived with adhesion, a yield wall or the corrected theories here")
+    if s.get("gaps") and not elastic_original:
+        raise CommandError("--gaps is available for elastic scenes without adhesion and the "
+                           "original theory (persson01) only: the gap distribution is not "
                            "derived with adhesion, a yield wall or the corrected theories here")
     t0 = time.perf_counter()
     yield_wall = {} if s["hardness"] is None else {"hardness": s["hardness"]}
@@ -367,32 +375,45 @@ def _cmd_contact(args) -> int:
               f"(gamma_eff(1) > 0): {bool(res.sticky[0])}, fixed-point iterations <= "
               f"{int(res.iterations.max())}")
     if s["pull_off"]:
-        # (a corrected theory or a yield wall was refused with the settings: cli_config)
+        # the scene as solved: its theory and yield wall (what pull_off does not serve was
+        # refused with the settings: cli_config)
         t1 = time.perf_counter()
         if not args.quiet and sys.stderr.isatty():
             print("pull-off: following the contact branch into tension ...", file=sys.stderr,
                   flush=True)
-        sigma_c = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
-                              **{"work_of_adhesion": 0.0, **s["adhesion"]})
-        print(f"pull-off stress: {sigma_c:.5g} Pa ({time.perf_counter() - t1:.3g} s"
-              + (", no adhesion" if not s["adhesion"].get("work_of_adhesion", 0.0) > 0
-                 else "") + ")")
+        sigma_c, po = pf.pull_off(surface, e_star=e_star, rtol=max(s["rtol"], 1e-4),
+                                  full_output=True, bracket=False, **s["theory"],
+                                  **yield_wall, **{"work_of_adhesion": 0.0, **s["adhesion"]})
+        how = ("no adhesion" if not s["adhesion"].get("work_of_adhesion", 0.0) > 0
+               else f"+- {po['error_estimate']:.2g} Pa"
+               + ("" if po["converged"] else ", NOT converged to rtol"))
+        print(f"pull-off stress: {sigma_c:.5g} Pa ({how}, {time.perf_counter() - t1:.3g} s)")
     timing = f"time: {elapsed:.3g} s"
     if "compile" in res.timings:
         timing += f" (compile {res.timings['compile']:.3g} s)"
     print(timing)
-    if s["csv"]:
-        folder = os.path.dirname(s["csv"])
+    gap_columns = None
+    if s.get("gaps"):
+        gap_columns = _gap_columns(pf, surface, e_star, res.pressure,
+                                   s["adhesion"].get("energy_correction"), max(s["rtol"], 1e-3))
+    files = [path for path in (s["csv"], s.get("gaps")) if path]
+    for path in files:
+        folder = os.path.dirname(path)
         if folder:
             os.makedirs(folder, exist_ok=True)
-        columns = {"pressure_Pa": res.pressure, "area": res.area,
-                   "force_per_contact_area_Pa": res.mean_contact_pressure,
-                   "compression_per_contact_area_Pa": res.mean_contact_stress,
-                   "status": status, **extra}
-        if sigma_c is not None:
-            columns["pull_off_stress_Pa"] = np.full(res.pressure.shape, sigma_c)
+    if files:
+        # both files go to temporary names first and are renamed together at the end
         with _OutputSet() as outputs:
-            _write_csv(outputs.path(s["csv"]), columns)
+            if s["csv"]:
+                columns = {"pressure_Pa": res.pressure, "area": res.area,
+                           "force_per_contact_area_Pa": res.mean_contact_pressure,
+                           "compression_per_contact_area_Pa": res.mean_contact_stress,
+                           "status": status, **extra}
+                if sigma_c is not None:
+                    columns["pull_off_stress_Pa"] = np.full(res.pressure.shape, sigma_c)
+                _write_csv(outputs.path(s["csv"]), columns)
+            if gap_columns is not None:
+                _write_csv(outputs.path(s["gaps"]), gap_columns)
             outputs.commit()
     return 0
 
@@ -477,6 +498,28 @@ def _log_to_stderr(quiet: bool) -> None:
     _log_handler.setLevel(logging.WARNING if quiet else logging.INFO)
     if logger.level == logging.NOTSET or logger.level > logging.INFO:
         logger.setLevel(logging.INFO)
+
+
+def _gap_columns(pf, surface, e_star, pressure, energy_correction, rtol) -> dict:
+    """The columns of ``contact --gaps``: one row per (pressure > 0, gap) of
+    :func:`persson_fast.gap_distribution` on its default grid, at ``rtol`` (the command's,
+    at least 1e-3); prints a line per call (and the message where a pressure is flagged)."""
+    positive = pressure[pressure > 0]
+    if positive.size == 0:
+        raise CommandError("--gaps needs a pressure > 0 [Pa]: at p_nom <= 0 the surfaces are "
+                           "apart and the gap distribution is not defined")
+    g = pf.gap_distribution(surface, positive, e_star=e_star,
+                            energy_correction=energy_correction, rtol=rtol)
+    n_p, n_u = g.density.shape
+    cumulative = g.cumulative(g.gaps)
+    print(f"gap distribution: {n_p} pressure(s) x {n_u} gaps from 0 to {g.gaps[-1]:.4g} m "
+          f"(Persson's theory, shape {g.shape!r}, rtol {rtol:g}); mean gap = u(p)")
+    if not g.success:
+        print(f"warning (gaps): {g.message}")
+    return {"pressure_Pa": np.repeat(g.pressure, n_u), "gap_m": np.tile(g.gaps, n_p),
+            "density_per_m": g.density.ravel(), "cumulative": cumulative.ravel(),
+            "contact_fraction": np.repeat(g.contact_fraction, n_u),
+            "mean_gap_m": np.repeat(g.mean, n_u), "status": np.repeat(g.status, n_u)}
 
 
 # --------------------------------------------------------------------------------------------

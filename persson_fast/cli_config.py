@@ -54,31 +54,33 @@ def _text(value, key):
 
 
 #: the area theories whose pull-off stress ``--pull-off`` computes: persson_fast.pull_off
-#: follows the original theory's elastic contact branch, so a corrected theory or a yield wall
-#: would get the original theory's stress beside its own areas. The one place that refuses
-#: the others (:func:`_refuse_unavailable_pull_off`); extend it when pull_off serves them.
-PULL_OFF_THEORIES = ("persson01",)
+#: follows the contact branch of the scene's own theory (the corrected diffusions yp08 and
+#: wm17 as well as the original; xu24 takes no adhesion, so its pull-off stress is 0), with
+#: its yield wall where ``--hardness`` is given. The one place that refuses what it does
+#: not serve (:func:`_refuse_unavailable_pull_off`).
+PULL_OFF_THEORIES = ("persson01", "yp08", "wm17", "xu24")
 #: whether ``--pull-off`` serves a yield wall (``--hardness``)
-PULL_OFF_WITH_HARDNESS = False
+PULL_OFF_WITH_HARDNESS = True
 
 
 def _refuse_unavailable_pull_off(settings: dict) -> None:
     """``--pull-off`` (or ``pull_off = true``) where the pull-off stress of the scene is not
-    available: a corrected area theory, or a yield wall."""
+    available: an area theory outside :data:`PULL_OFF_THEORIES`, or a yield wall while
+    :data:`PULL_OFF_WITH_HARDNESS` is False."""
     if not settings["pull_off"]:
         return
     theory = settings["theory"].get("theory", "persson01")
     if theory not in PULL_OFF_THEORIES:
         raise CommandError(
-            f"--pull-off is not yet available for the corrected theories: the pull-off stress "
-            f"is computed for {', '.join(PULL_OFF_THEORIES)} only (it follows that theory's "
-            f"contact branch, so beside --theory {theory} areas it would be another theory's "
-            f"number); got --theory {theory}: drop --pull-off, or use --theory persson01")
+            f"--pull-off is not available for --theory {theory}: the pull-off stress is "
+            f"computed for {', '.join(PULL_OFF_THEORIES)} (it follows that theory's contact "
+            f"branch, so beside --theory {theory} areas it would be another theory's number); "
+            f"drop --pull-off, or use one of those theories")
     if settings["hardness"] is not None and not PULL_OFF_WITH_HARDNESS:
         raise CommandError(
-            "--pull-off is not yet available with a yield wall: the pull-off stress is "
-            "computed for elastic contact (without --hardness) only, so beside elastoplastic "
-            "areas it would be the elastic scene's number; drop --pull-off or --hardness")
+            "--pull-off is not available with a yield wall: the pull-off stress is computed "
+            "for elastic contact (without --hardness) only, so beside elastoplastic areas it "
+            "would be the elastic scene's number; drop --pull-off or --hardness")
 
 
 def _resolve_contact(args) -> dict:
@@ -86,7 +88,8 @@ def _resolve_contact(args) -> dict:
     cfg = _load_toml(args.config) if args.config else {}
     known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
                  "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off",
-                 "theory", "theory_gamma", "separation", "hardness", "hardness_exponent"}
+                 "theory", "theory_gamma", "separation", "hardness", "hardness_exponent",
+                 "gaps"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -167,6 +170,8 @@ def _resolve_contact(args) -> dict:
     method = args.method or _text(cfg.get("method", "auto"), "method")
     rtol = args.rtol if args.rtol is not None else _number(cfg.get("rtol", 1e-6), "rtol")
     csv_path = args.csv or (_text(cfg["csv"], "csv") if "csv" in cfg else None)
+    gaps_path = getattr(args, "gaps", None) or (_text(cfg["gaps"], "gaps") if "gaps" in cfg
+                                                else None)
     adhesion = {}
     for key in ("work_of_adhesion", "energy_correction", "detachment_prefactor"):
         value = getattr(args, key)
@@ -215,7 +220,7 @@ def _resolve_contact(args) -> dict:
     settings = {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
                 "method": method, "rtol": rtol, "csv": csv_path, "adhesion": adhesion,
                 "pull_off": want_pull_off, "theory": theory, "separation": want_separation,
-                "hardness": hardness}
+                "hardness": hardness, "gaps": gaps_path}
     _refuse_unavailable_pull_off(settings)
     return settings
 

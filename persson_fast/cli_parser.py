@@ -130,8 +130,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--detachment-prefactor", type=float, metavar="BETA",
                    help="beta of seed Eq. 8 (default 1/sqrt 2)")
     g.add_argument("--pull-off", action="store_true",
-                   help="also compute the pull-off stress (0 without adhesion); not yet "
-                        "available with a corrected --theory or with --hardness")
+                   help="also compute the pull-off stress (0 without adhesion) of the scene "
+                        "as solved, its --theory and --hardness included")
     ct.add_argument("--hardness", type=float, metavar="SIGMA_Y",
                     help="penetration hardness [Pa]: the yield wall, with or without "
                          "adhesion; adds the elastic and plastic area columns; constant, or "
@@ -171,6 +171,13 @@ def build_parser() -> argparse.ArgumentParser:
                          "compression_per_contact_area_Pa, status[, elastic_area, "
                          "plastic_area][, separation_m, stiffness_Pa_per_m, "
                          "elastic_energy_J_per_m2][, pull_off_stress_Pa]")
+    ct.add_argument("--gaps", metavar="GAPS_FILE",
+                    help="also write the distribution of interfacial gaps at every pressure "
+                         "> 0 to this CSV file (replaced if it exists; scenes without "
+                         "adhesion or yield wall, theory persson01; --energy-correction sets "
+                         "the mean gaps): one row per (pressure, gap), columns pressure_Pa, "
+                         "gap_m, density_per_m, cumulative (probability of a gap <= gap_m, "
+                         "the contact included), contact_fraction, mean_gap_m, status")
 
     sub.add_parser("info", help="versions, threads and kernel compile time",
                    description="Print versions and threads, then compile (or load from the "

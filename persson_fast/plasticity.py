@@ -51,6 +51,7 @@ import numpy as np
 
 from ._validation import as_float_array, check_finite
 from .analytic import plastic_area
+from .walls import CallableWallError
 
 #: the methods that can carry a yield wall (the others raise a ValueError naming these):
 #: "analytic" a constant one without a detachment wall, "strip" any pair of walls
@@ -64,15 +65,21 @@ SCALE_FORMS = ("a number [Pa], a callable of zeta returning sigma_Y [Pa] (e.g. "
 
 def check_hardness(value, name: str = "hardness", *, scale_dependent: bool = False):
     """The yield stress: a finite number > 0 [Pa] (returned as float), None (passes through)
-    or, where ``scale_dependent``, a callable of zeta (returned as is) or a table -- a pair
-    (zeta, sigma_Y) or a mapping with those keys -- (returned as a :class:`HardnessTable`).
+    or, where ``scale_dependent``, a callable of zeta or a table -- a pair (zeta, sigma_Y) or
+    a mapping with those keys -- (returned as a :class:`HardnessTable`). A callable of the
+    user's own is returned wrapped in a :class:`CheckedHardness` (the package's forms and a
+    table as they are), so that wherever it is called, a failure or a value that is no
+    hardness is a ValueError naming ``name`` and the zeta it was called at.
 
     Where not ``scale_dependent``, a callable or a table is refused with the reason.
     """
     if value is None:
         return None
-    if isinstance(value, HardnessTable) or (callable(value) and scale_dependent):
+    if isinstance(value, HardnessTable) or (scale_dependent and isinstance(
+            value, (CheckedHardness, PowerLawHardness, NixGaoHardness))):
         return value
+    if callable(value) and scale_dependent:
+        return CheckedHardness(value, name)
     pair = (isinstance(value, (tuple, list)) and len(value) == 2
             and all(np.ndim(v) == 1 for v in value))
     if scale_dependent and isinstance(value, dict):
@@ -106,6 +113,64 @@ def _positive(value, name: str, unit: str, *, allow_zero: bool = False) -> float
         rule = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be {rule} [{unit}]; got {name} = {out!r}")
     return out
+
+
+@dataclass(frozen=True, eq=False)
+class CheckedHardness:
+    """A hardness callable of the user's own, checked at every call.
+
+    Calling it calls ``func`` on the magnifications; an exception raised there, a result of
+    another shape, or a value that is not finite and > 0 is a ValueError
+    (:class:`persson_fast.walls.CallableWallError`) naming the argument (``name``, e.g.
+    ``hardness``) and the zeta it was called at, the user's own exception chained. Its repr
+    is the user's callable's.
+
+    Attributes
+    ----------
+    func : callable -- the user's vectorised callable zeta [-] -> sigma_Y [Pa].
+    name : str -- the argument it was given as.
+    """
+
+    func: object
+    name: str = "hardness"
+
+    def _where(self, z: np.ndarray) -> str:
+        flat = z.ravel()
+        if flat.size == 1:
+            return f"zeta = {float(flat[0])!r}"
+        return (f"{flat.size} values of zeta in [{float(np.min(flat)):.6g}, "
+                f"{float(np.max(flat)):.6g}]")
+
+    def __call__(self, zeta):
+        z = np.asarray(zeta, dtype=float)
+        try:
+            out = self.func(z.copy())
+        except CallableWallError:
+            raise
+        except Exception as exc:  # noqa: BLE001 -- any failure of the user's code is reported
+            raise CallableWallError(
+                f"{self.name} must be a vectorised callable zeta [-] -> sigma_Y [Pa]; calling "
+                f"it at {self._where(z)} raised {type(exc).__name__}: {exc}") from exc
+        try:
+            arr = np.asarray(out, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise CallableWallError(
+                f"{self.name}(zeta) must return real numbers [Pa]; got {type(out).__name__} "
+                f"{out!r:.80} at {self._where(z)}") from exc
+        if arr.shape != z.shape:
+            raise CallableWallError(
+                f"{self.name}(zeta) must return finite values > 0 [Pa] of zeta's shape {z.shape} "
+                f"(a vectorised callable); got shape {arr.shape} at {self._where(z)}")
+        bad = ~(np.isfinite(arr) & (arr > 0))
+        if np.any(bad):
+            i = int(np.argmax(bad.ravel()))
+            raise CallableWallError(
+                f"{self.name}(zeta) must return finite values > 0 [Pa] of zeta's shape; got "
+                f"{self.name}({float(z.ravel()[i])!r}) = {float(arr.ravel()[i])!r}")
+        return arr
+
+    def __repr__(self) -> str:
+        return repr(self.func)
 
 
 @dataclass(frozen=True)
@@ -147,9 +212,9 @@ class HardnessTable:
         lo, hi = self.zeta[0], self.zeta[-1]
         bad = (z < lo * (1 - 1e-12)) | (z > hi * (1 + 1e-12))
         if np.any(bad):
-            raise ValueError(f"hardness table covers zeta in [{lo:.6g}, {hi:.6g}] [-]; asked at "
-                             f"zeta = {float(z[bad].ravel()[0])!r} (give a table that spans "
-                             f"the solve's zeta range)")
+            raise CallableWallError(f"hardness table covers zeta in [{lo:.6g}, {hi:.6g}] [-]; "
+                                    f"asked at zeta = {float(z[bad].ravel()[0])!r} (give a "
+                                    f"table that spans the solve's zeta range)")
         return np.exp(np.interp(np.log(np.clip(z, lo, hi)), np.log(self.zeta),
                                 np.log(self.sigma_y)))
 
@@ -312,5 +377,5 @@ def hardness_limit(pressure, hardness: float) -> np.ndarray:
 
 __all__ = ["check_hardness", "constant_yield", "hardness_limit", "hardness_power_law",
            "hardness_nix_gao", "hardness_table", "hardness_in_diffusion_time",
-           "PowerLawHardness", "NixGaoHardness", "HardnessTable",
+           "PowerLawHardness", "NixGaoHardness", "HardnessTable", "CheckedHardness",
            "YIELD_METHODS"]

@@ -1,6 +1,7 @@
 """The pull-off stress: the contact branch of one adhesive scene followed to its end.
 
-:func:`pull_off` follows the contact branch parametrised by y0 = sigma0 + sigma_a(1) (at
+:func:`pull_off` follows the contact branch (of the original theory, of the corrected
+theories yp08 and wm17, and with a yield wall) parametrised by y0 = sigma0 + sigma_a(1) (at
 fixed sigma0 the fixed point of seed Eqs. 8-9 is nearly singular along the flat end of the
 branch; at fixed y0 it is regular), with a fixed-point loop in Python around the compiled
 diffusion solve (one scene, a few dozen branch points: the loop is not the cost), on nested
@@ -15,17 +16,20 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # names of the type hints only
+    from collections.abc import Callable
+
     from numpy.typing import ArrayLike
-    
+
     from .scene import Scene
     from .surface_base import Surface
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
-from ._kernels.status import RTOL_NOT_MET, WALL_JUMP
-from .adhesion import ADHESION_DEFAULTS, _controls, solve_adhesive_contact
+from ._kernels.status import RTOL_NOT_MET, STATUS_MESSAGES, WALL_JUMP
+from .adhesion import ADHESION_DEFAULTS, THEORY_CODES, _controls, solve_adhesive_contact
 from .methods import choose_auto, variant_of
 from .results import summarize_status
 from .scene import DETACHMENT_PREFACTOR
@@ -109,16 +113,13 @@ def _near_one_min(surface, e_star, work_of_adhesion, beta):
     return float(np.exp(lo))
 
 
-def _interp_profile(zeta_to, zeta_from, x_dim):
-    """A detachment-stress profile [Pa] carried to another grid (linear in ln zeta)."""
-    return np.interp(np.log(zeta_to), np.log(zeta_from), x_dim)
-
-
-def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, upper):
+def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, upper,
+                    theory="persson01", theory_gamma=None, hardness=None):
     """Where :func:`solve_adhesive_contact` on the grid ``z`` stops finding contact.
 
     Bisection in the tension between 0 and ``upper`` [Pa], each solve continuing from the
-    contact state at the nearest tension with contact. Returns ((lo, hi), solves): contact
+    contact state at the nearest tension with contact (the scene's theory and yield wall as
+    given). Returns ((lo, hi), solves): contact
     found at tension lo, none at hi [Pa].
     """
 
@@ -130,7 +131,8 @@ def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, 
                                    energy_correction=energy_correction,
                                    detachment_prefactor=beta, rtol=rtol, parallel=False,
                                    controls=controls, zeta_given=True, start=start,
-                                   onset=False)
+                                   onset=False, theory=theory, theory_gamma=theory_gamma,
+                                   hardness=hardness)
         solves += 1
         if r.status[0] not in (0, WALL_JUMP, RTOL_NOT_MET):
             return False, r
@@ -151,8 +153,10 @@ def _solver_bracket(surface, z, e, dg, energy_correction, beta, rtol, controls, 
 
 def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
              work_of_adhesion: float | None = None, energy_correction: float | None = None,
-             detachment_prefactor: float = DETACHMENT_PREFACTOR, rtol: float = 1e-6,
-             zeta: ArrayLike | None = None, controls: dict | None = None,
+             detachment_prefactor: float = DETACHMENT_PREFACTOR, theory: str = "persson01",
+             theory_gamma: float | None = None,
+             hardness: float | Callable[[np.ndarray], np.ndarray] | ArrayLike | None = None,
+             rtol: float = 1e-6, zeta: ArrayLike | None = None, controls: dict | None = None,
              full_output: bool = False, bracket: bool = True) -> float | tuple[float, dict]:
     """Pull-off stress of a nominally flat contact: contact exists for p_nom > -sigma_c. [Pa]
 
@@ -160,13 +164,25 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
     ----------
     surface : Surface or Scene
         The rough surface, or a :class:`~persson_fast.Scene` that carries it with the scene's
-        parameters (the keywords below then stay unset).
+        parameters, its yield wall included (the keywords below then stay unset).
     e_star : float
         Effective modulus E* > 0 (required with a surface). [Pa]
     work_of_adhesion : float
         Delta gamma >= 0 (required with a surface). [J/m^2]
     energy_correction, detachment_prefactor
         As in :func:`persson_fast.solve_contact`.
+    theory : str
+        The area theory whose contact branch is followed, as in
+        :func:`persson_fast.solve_contact`: "persson01" (default, the original), "yp08" or
+        "wm17" (the corrected diffusion dT/dG = S(A), solved with sigma_a). "xu24" has no
+        diffusion that could carry the detachment wall and raises a ValueError, as in
+        solve_contact. [-]
+    theory_gamma : float or None
+        gamma of the corrected theory (None: its default), as in solve_contact. [-]
+    hardness : float, callable, table or None
+        A yield wall sigma_Y(zeta), as in :func:`persson_fast.solve_contact` (a constant [Pa],
+        a callable of zeta, or a table): the branch is then that of the two-wall fixed point
+        solve_contact solves at each nominal stress (see Notes). None (default): elastic.
     rtol : float
         Relative accuracy of sigma_c. [-]
     zeta : array_like, optional
@@ -213,7 +229,10 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
           coarsest grids [Pa];
         - ``branch``: the descent on the coarsest grid, arrays ``y0``, ``sigma0`` [Pa] and
           ``area`` (A(zeta1)/A0);
-        - ``solves``, ``iterations``, ``unconverged`` (branch points that failed), ``time`` [s];
+        - ``solves``, ``iterations``, ``unconverged`` (branch points that failed), ``lost``
+          (where and why the last one failed; "" if none), ``time`` [s];
+        - ``theory``, ``theory_gamma``, ``hardness``: the scene's area theory and yield wall
+          as used;
         - ``bracket`` (with ``bracket=True``): tensions (lo, hi) [Pa] between which
           :func:`persson_fast.solve_contact` at this ``rtol`` (on the grid
           ``adhesion_zeta(surface, rtol)`` or ``zeta``) stops finding contact: contact at lo,
@@ -222,6 +241,8 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
 
     Raises
     ------
+    ValueError
+        For bad input (as solve_contact), and for theory="xu24" with adhesion.
     RuntimeError
         If the contact problem at p_nom = 0 fails, the branch cannot be left from p_nom = 0
         although the state there is sticky (or undecided on the last grid tried), or a
@@ -294,9 +315,34 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
     below about 5e-7 cannot be confirmed and warns. Seed scene on a 2-core Intel Xeon machine: 0.15 /
     0.56 / 5.3 / 36 s at rtol 1e-3 / 1e-4 / 1e-5 / 1e-6, every value
     within its estimate of the reference.
-    """
-    from .scene import unpack_adhesive_scene
 
+    **Corrected theories and the yield wall.** The same branch is followed, with the fixed
+    point solve_contact solves for them (:func:`persson_fast.adhesion.solve_adhesive_contact`):
+    for yp08 and wm17 the iterate carries the corrected diffusion time T = int S(A) dG at the
+    nodes beside sigma_a (T of the real area, as in
+    :func:`persson_fast._kernels.adhesion.solve_adhesive_one`); with a yield wall every
+    diffusion solve is the two-wall solver, the area is the real area A_el + A_pl, U_el that
+    of the elastic area and gamma_eff per unit real area. The pull-off stress is then the
+    end of that model's contact branch at fixed sigma_Y(zeta): the yield wall acts at each
+    nominal stress as solve_contact has it, not as the memory of an earlier, higher load
+    (unloading a plastically flattened contact is not modelled). The stickiness test, the
+    nested grids, the extrapolation and the error estimate are those above. With a yield wall
+    the two-wall solver cannot resolve a start closer to the detachment wall than a small
+    fraction of the strip between the walls (seed scene, sigma_Y = 2e8 Pa: from y0 = 1.1e4 Pa
+    = 0.8 % of sigma_a(1) down); the descent stops there and what is left of the branch is
+    charged to the estimate (``tail``, about y0 there): seed scene, sigma_Y = 2e8 Pa,
+    1.42899e6 +- 1.4e3 Pa at rtol 1e-4, flagged (converged False) where that exceeds rtol.
+    Measured (seed scene, rtol 1e-4, 2-core machine): yp08 1.06037e6 +- 80 Pa, wm17
+    1.12908e6 +- 49 Pa, 17-29 s with the bracket; at rtol 1e-3 about 1-2 s each.
+    """
+    from .scene import Scene, _is_default, unpack_adhesive_scene
+
+    if isinstance(surface, Scene) and surface.hardness is not None:
+        if not _is_default("hardness", hardness):
+            raise ValueError("pull_off: give the scene's parameters either in the Scene or as "
+                             "keywords, not both; got a Scene and hardness")
+        hardness = surface.hardness
+        surface = replace(surface, hardness=None)     # the yield wall goes on as a keyword
     surface, kw = unpack_adhesive_scene(surface, e_star, work_of_adhesion, energy_correction,
                                         detachment_prefactor, "pull_off")
     e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
@@ -304,7 +350,8 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
     sigma_c, info, warning = _pull_off(
         surface, e_star=e_star, work_of_adhesion=work_of_adhesion,
         energy_correction=energy_correction, detachment_prefactor=detachment_prefactor,
-        rtol=rtol, zeta=zeta, controls=controls, bracket=bool(full_output and bracket))
+        theory=theory, theory_gamma=theory_gamma, hardness=hardness, rtol=rtol, zeta=zeta,
+        controls=controls, bracket=bool(full_output and bracket))
     if warning is not None:
         import warnings
 
@@ -313,22 +360,28 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
 
 
 def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
-              detachment_prefactor=DETACHMENT_PREFACTOR, rtol=1e-6, zeta=None, controls=None,
-              bracket=False):
+              detachment_prefactor=DETACHMENT_PREFACTOR, theory="persson01", theory_gamma=None,
+              hardness=None, rtol=1e-6, zeta=None, controls=None, bracket=False):
     """:func:`pull_off` without its warning: returns (sigma_c [Pa], info, warning), the
     warning's text or None. Thread-safe (no warning filters touched), for callers that
     record ``info["converged"]`` themselves (:func:`persson_fast.api._flag_lost_contact`).
     """
+    from .plasticity import check_hardness
     from .scene import _check_rtol, _check_scene_args, _check_zeta
+    from .theories import check_theory, check_theory_scene
 
     t_start = time.perf_counter()
     rtol = _check_rtol(rtol)
     e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
                                     energy_correction)
+    theory, theory_gamma = check_theory(theory, theory_gamma)
+    hardness = check_hardness(hardness, scale_dependent=True)
+    check_theory_scene(theory, float(dg), hardness)
     info = {"solves": 0, "iterations": 0, "unconverged": 0, "error_estimate": 0.0,
             "error_parts": {}, "converged": True, "fold": False, "y0": 0.0, "grids": [],
             "extrapolated": [], "branch": {}, "bracket": (0.0, 0.0), "time": 0.0,
-            "sticky": False, "reason": "", "rest": []}
+            "sticky": False, "reason": "", "rest": [], "theory": theory,
+            "theory_gamma": theory_gamma, "hardness": hardness, "lost": ""}
     if dg == 0.0:
         info["reason"] = "not sticky: no adhesion (work_of_adhesion = 0)"
         return 0.0, info, None
@@ -342,9 +395,12 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
         ctl["max_iter"] = PULL_OFF_MAX_ITER
     gamma_s = -1.0 if energy_correction is None else float(energy_correction)
     variant = variant_of(choose_auto("adhesion"))
+    theory_code = THEORY_CODES.get(theory, 0)
+    theory_g = 1.0 if theory_gamma is None else float(theory_gamma)
 
     def make(grid):
-        return _Branch(surface, grid, e, dg, beta, gamma_s, variant, ctl["n_damp"])
+        return _Branch(surface, grid, e, dg, beta, gamma_s, variant, ctl["n_damp"],
+                       theory_code, theory_g, hardness)
 
     # the contact state at p_nom = 0 (from full contact) starts the descent on the coarsest
     # grid on which it is sticky; on none of PULL_OFF_STICKY_GRIDS nested grids: sigma_c = 0
@@ -403,20 +459,19 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     branches = [b0]
     t_coarse = best["sigma0"] - g_pt["sigma0"]
     t_fine = None
-    prev_z, prev_x = z0, g_pt["x"] * b0.scale
+    prev_b, prev_x = b0, g_pt["x"]
     err_grid = np.inf
     while len(ends) < PULL_OFF_MAX_GRIDS:
-        grid = refine_zeta(prev_z)
+        grid = refine_zeta(prev_b.zeta)
         b = make(grid)
         branches.append(b)
-        p = b.follow(y_g, [_interp_profile(grid, prev_z, prev_x) / b.scale], rtol, ctl)
+        p = b.follow(y_g, [b.carry(prev_b, prev_x)], rtol, ctl)
         if not p["converged"]:
             # near the stickiness threshold the branch moves much with the grid (the
             # threshold does): walk this grid's own branch down the coarse ladder to y_g,
             # from the coarse grid's state at p_nom = 0
             ladder = [s["y0"] for s in ok if s["y0"] >= y_g]
-            start = _interp_profile(grid, b0.zeta, ok[0]["x"] * b0.scale)
-            walk = _replay(b, ladder, start, rtol, ctl)
+            walk = _replay(b, ladder, b.carry(b0, ok[0]["x"]), rtol, ctl)
             if walk and walk[-1]["converged"] and walk[-1]["y0"] == y_g:
                 walk[-1]["iterations"] += p["iterations"] + sum(
                     q["iterations"] for q in walk[:-1])
@@ -427,11 +482,11 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
             break
         ends.append(p["sigma0"])
         if len(ends) == 2:
-            pts = _replay(b, down, p["x"] * b.scale, rtol, ctl)
+            pts = _replay(b, down, p["x"], rtol, ctl)
             if pts and pts[-1]["converged"]:
                 used.append(pts[-1])
                 t_fine = pts[-1]["sigma0"] - p["sigma0"]
-        prev_z, prev_x = grid, p["x"] * b.scale
+        prev_b, prev_x = b, p["x"]
         if len(ends) >= 3:
             s = np.array(ends)
             rich = (4.0 * s[1:] - s[:-1]) / 3.0
@@ -489,10 +544,19 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
                                f"smaller rtol or a finer zeta grid")
     error = err_grid + err_t + err_tail + err_inner + err_flag
     converged = bool(error <= rtol * sigma_c and not lost)
+    failed = [p for p in samples + used if not p["converged"]]
+    why_lost = ""
+    if failed:
+        code = int(failed[-1]["status"])
+        why_lost = (f"at y0 = {failed[-1]['y0']:.4g} Pa, last diffusion solve: "
+                    f"{STATUS_MESSAGES.get(code, 'flagged')} (code {code})" if code else
+                    f"at y0 = {failed[-1]['y0']:.4g} Pa, its fixed point did not converge")
+    info["lost"] = why_lost
     warning = None
     if not converged:
         warning = (f"pull_off: estimated error {error:.3g} Pa of sigma_c = {sigma_c:.6g} Pa "
-                   f"exceeds rtol * sigma_c" + ("; a branch point failed" if lost else ""))
+                   f"exceeds rtol * sigma_c" + (f"; a branch point failed ({why_lost})"
+                                                if lost else ""))
     info["solves"] += sum(b.solves for b in branches + rest_branches)
     info["iterations"] += sum(p["iterations"] for p in samples + used) + check["iterations"]
     info["unconverged"] = sum(not p["converged"] for p in samples) + sum(
@@ -515,7 +579,8 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
         upper = max(sigma_c + error, float(-min(ends))) * (1.0 + 2.0 * rtol)
         z_solver = adhesion_zeta(surface, rtol) if zeta is None else z_user
         info["bracket"], n = _solver_bracket(surface, z_solver, e, dg, energy_correction,
-                                             beta, rtol, controls, upper)
+                                             beta, rtol, controls, upper, theory,
+                                             theory_gamma, hardness)
         info["solves"] += n
     info["time"] = time.perf_counter() - t_start
     return sigma_c, info, warning

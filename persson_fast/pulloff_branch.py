@@ -2,7 +2,11 @@
 
 :class:`_Branch` holds the adhesive fixed point of seed Eqs. 8-9 on one grid, parametrised by
 y0 = sigma0 + sigma_a(1): a branch point at given y0 (Anderson-accelerated, with a trust
-region), the state at p_nom = 0 and whether it is sticky (:func:`_rest_start`).
+region), the state at p_nom = 0 and whether it is sticky (:func:`_rest_start`). The same
+branch serves the corrected theories yp08 and wm17 (the iterate then carries the corrected
+diffusion time T(G) = int S(A) dG beside sigma_a, as the compiled fixed point does) and a
+yield wall sigma_Y(zeta) (every diffusion solve is then the two-wall solver, Eqs. 8-9 with
+U_el of the elastic area and gamma_eff per unit real area).
 :func:`_descend` follows the branch down in y0 to where sigma0 is least (:func:`_tail_estimate`
 and :func:`_locate_minimum` say where that is); :func:`_replay` repeats given branch points on
 a finer grid. :func:`persson_fast.pull_off` builds on these.
@@ -11,8 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._kernels.adhesion import detachment_update
-from ._kernels.status import BAD_INPUT, FAR_LEAK, NONFINITE, RTOL_NOT_MET, WALL_JUMP
+from ._kernels.adhesion import corrected_times, yield_detachment_update
+from ._kernels.status import (BAD_INPUT, FAR_LEAK, GRID_CAP, NEGATIVE_DENSITY, NONFINITE,
+                              NOT_CONVERGED, RTOL_NOT_MET, START_UNRESOLVED, WALL_JUMP)
 from .adhesion import _run
 from ._kernels.similarity import SMOOTH_WALL
 from .results import summarize_status
@@ -82,6 +87,18 @@ PULL_OFF_REST_ITER = 30
 #: stops it (a near-full-contact self-affine scene, A/A0 = 0.987 at p_nom = 0, reached the
 #: far end of the diffusion grid at tolerances 2e-4 and 5e-6 and not at 5e-5 or 5e-7)
 PULL_OFF_REST_RETRIES = 2
+#: a converged branch point whose last diffusion solve is flagged FAR_LEAK (the distribution
+#: reached the far end of the diffusion grid) is solved on with a diffusion tolerance this
+#: factor tighter, once (down to PULL_OFF_INNER_MIN)
+PULL_OFF_LEAK_RETRY = 0.1
+#: with a yield wall, a branch point stops at once (unconverged) when a diffusion solve
+#: returns one of these: the two-wall solver cannot resolve a start this close to the
+#: detachment wall (its grid spans the whole strip between the walls; seed scene, sigma_Y =
+#: 2e8 Pa: negative areas from y0 = 1.1e4 Pa = 0.8 % of sigma_a(1) down, at every tolerance
+#: and on both the pull-off grid and solve_contact's; a self-affine scene with sigma_Y =
+#: 3e7 Pa: its node cap from y0 = 2e5 Pa = 4 % of sigma_a(1)), and no relaxation or trust
+#: region changes that; the descent's tail estimate then charges what is left of the branch
+STRIP_UNRESOLVED = (NEGATIVE_DENSITY, START_UNRESOLVED, GRID_CAP)
 
 
 class _AndersonHistory:
@@ -122,40 +139,115 @@ class _Branch:
     Along the contact branch the nominal pressure sigma0(y0) turns (or flattens) at the
     pull-off, where the fixed point at fixed sigma0 is singular; at fixed y0 it is regular.
     All stresses inside are scaled by the scene scale of :func:`_scene_arrays`.
+
+    The iterate is sigma_a at the nodes (scaled); with a corrected theory (``theory_code``
+    YP08 or WM17 of :mod:`persson_fast._kernels.theories`) it is followed by t = T/G(zeta1)
+    at the nodes, the corrected diffusion time T = int S(A) dG of the real area, iterated
+    with sigma_a as in :func:`persson_fast._kernels.adhesion.solve_adhesive_one` (kept
+    non-decreasing from t = 0). With ``hardness`` (the validated yield wall sigma_Y(zeta))
+    every diffusion solve is the two-wall solver; the area of a branch point is then the
+    real area A_el + A_pl, and Eqs. 8-9 take U_el of the elastic area A_el and gamma_eff
+    per unit real area (:func:`persson_fast._kernels.adhesion.yield_detachment_update`).
+    A yield wall that the distribution cannot reach from p_nom = 0 (the reflection-principle
+    bound of :func:`persson_fast.yield_api.yield_wall_reach` at most ``FAR_MASS``; along the
+    branch p_nom <= 0, where it is reached less) is left out, as solve_contact does.
     """
 
-    def __init__(self, surface, zeta, e_star, work_of_adhesion, beta, gamma_s, variant, n_damp):
+    def __init__(self, surface, zeta, e_star, work_of_adhesion, beta, gamma_s, variant, n_damp,
+                 theory_code=0, theory_gamma=1.0, hardness=None):
         from ._jit import callable_with
-        from ._kernels.adhesion import STEP_SIGNATURE, elastic_step
+        from ._kernels.adhesion import STEP_SIGNATURE, elastic_step, yield_step
         from ._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
 
         self.zeta = np.asarray(zeta, dtype=float)
         self.work_of_adhesion = float(work_of_adhesion)
-        G, c, wa, wb, scale, _ = _scene_arrays(surface, self.zeta, e_star, work_of_adhesion, beta)
+        G, c, wa, wb, scale, G_dim = _scene_arrays(surface, self.zeta, e_star,
+                                                   work_of_adhesion, beta)
         self.G, self.c, self.wa, self.wb, self.scale = G, c, wa, wb, scale
         self.gamma_s = gamma_s
+        self.theory_code = int(theory_code)
+        self.theory_gamma = float(theory_gamma)
+        self.corrected = self.theory_code != 0
+        n = self.zeta.size
+        self.n = n
+        # the residual's weights: sigma_a at node i against its full-contact scale c_i, the
+        # corrected times (already relative to G(zeta1)) as they are
+        self.weights = (np.concatenate([1.0 / c, np.ones(n)]) if self.corrected else 1.0 / c)
+        self.has_yield = hardness is not None
+        self.sy = np.zeros(0)               # no yield wall
+        if self.has_yield:
+            from .adhesion import yield_wall_on
+            from .yield_api import FAR_MASS, yield_wall_reach
+
+            sy_dim = yield_wall_on(hardness, self.zeta)
+            reach = float(yield_wall_reach(G_dim, np.zeros(1), sy_dim[None, :])[0])
+            self.sy = np.full(n, np.inf) if reach <= FAR_MASS else sy_dim / scale
         # the adhesive wall: no kink detection, as in the fixed point of solve_contact
         self.variant = int(variant) | SMOOTH_WALL
         self.n_damp = int(n_damp)
         # one diffusion solve against the wall linear between the nodes (onset False): the
         # fixed point's own step (compiled or loaded already for solve_contact)
         self._grid = _solve_grid_tol
-        self._kernel = callable_with(elastic_step, STEP_SIGNATURE,
-                                     [(_solve_grid_tol, GRID_SIGNATURE)])
-        n = self.zeta.size
-        self._out = [np.zeros(n) for _ in range(5)]
-        self._absent = np.zeros(0)       # no yield wall, no plastic outputs
+        self._kernel = callable_with(yield_step if self.has_yield else elastic_step,
+                                     STEP_SIGNATURE, [(_solve_grid_tol, GRID_SIGNATURE)])
+        self._out = [np.zeros(n) for _ in range(7)]
+        self._absent = np.zeros(0)       # no yield wall: no plastic outputs
         self._counts = np.zeros(3, dtype=np.int64)
         self.solves = 0
-        self.area = np.ones(n)
+        self.area = np.ones(n)           # real contact area A_el + A_pl of the last solve
+        self.elastic = np.ones(n)        # its elastic part
         self.area_error = np.zeros(n)
 
-    def update(self, area):
-        """Eqs. 8-9: the detachment stress (scaled) of an area profile."""
-        n = area.size
-        x = np.empty(n)
-        detachment_update(area, self.c, self.wa, self.wb, self.gamma_s, np.empty(n),
-                          np.empty(n), x)
+    def sy_rows(self, n_rows):
+        """The yield wall (scaled) as rows for :func:`persson_fast.adhesion._run`, or None."""
+        if not self.has_yield:
+            return None
+        return np.tile(self.sy, (n_rows, 1))
+
+    def clip(self, x):
+        """An iterate made admissible: sigma_a >= 0; corrected times from 0, non-decreasing."""
+        x = np.array(x, dtype=float)
+        n = self.n
+        x[:n] = np.maximum(x[:n], 0.0)
+        if self.corrected:
+            t = np.maximum(x[n:], 0.0)
+            t[0] = 0.0
+            x[n:] = np.maximum.accumulate(t)
+        return x
+
+    def state(self, sigma_a, area):
+        """The iterate of a detachment stress profile (scaled) and its real area profile: the
+        corrected times of that area appended (a fixed point's times are those of its own
+        area, :func:`persson_fast._kernels.adhesion.corrected_times`)."""
+        x = np.array(sigma_a, dtype=float)
+        if not self.corrected:
+            return x
+        t = np.empty(self.n)
+        corrected_times(self.G, np.ascontiguousarray(area, dtype=float), self.theory_code,
+                        self.theory_gamma, t)
+        return np.concatenate([x, t])
+
+    def carry(self, other, x):
+        """An iterate of the branch ``other`` (another zeta grid of the same scene) carried
+        to this grid: every part linear in ln zeta (sigma_a in Pa, t = T/G(zeta1) as it is,
+        G(zeta1) being the scene's on every grid)."""
+        lz, lo = np.log(self.zeta), np.log(other.zeta)
+        parts = [np.interp(lz, lo, x[:other.n] * other.scale) / self.scale]
+        if self.corrected:
+            parts.append(np.interp(lz, lo, x[other.n:]))
+        return self.clip(np.concatenate(parts))
+
+    def update(self, elastic, real):
+        """Eqs. 8-9 (the detachment stress, scaled) and, with a corrected theory, the
+        corrected times of an area profile: ``elastic`` A_el, ``real`` A_el + A_pl."""
+        n = self.n
+        x = np.empty(2 * n if self.corrected else n)
+        yield_detachment_update(np.ascontiguousarray(elastic), np.ascontiguousarray(real),
+                                self.c, self.wa, self.wb, self.gamma_s, np.empty(n),
+                                np.empty(n), x[:n])
+        if self.corrected:
+            corrected_times(self.G, np.ascontiguousarray(real), self.theory_code,
+                            self.theory_gamma, x[n:])
         return x
 
     def inner_rtol(self, rtol, x):
@@ -163,40 +255,65 @@ class _Branch:
         return _inner_rtol(rtol, (x[0] / self.c[0]) ** 2)
 
     def evaluate(self, x, sigma0, rtol):
-        """F(x): diffuse against the wall x at nominal stress sigma0 (scaled), then Eqs. 8-9."""
-        area, load, det_a, det_l, err = self._out
+        """F(x): diffuse against the wall x (in the times of x with a corrected theory,
+        between the walls -x and sigma_Y with a yield wall) at nominal stress sigma0
+        (scaled), then Eqs. 8-9 (and the corrected times of the result's area)."""
+        area, load, pl, pl_load, det_a, det_l, err = self._out
+        n = self.n
         x = np.ascontiguousarray(x, dtype=float)
-        status = self._kernel(self._grid, self.variant, self.G, x, x, self._absent,
-                              float(sigma0), float(rtol), False, self.n_damp, area, load,
-                              self._absent, self._absent, det_a, det_l, err, self._counts)
+        wall = np.ascontiguousarray(x[:n])
+        times = np.ascontiguousarray(x[n:] * self.G[-1]) if self.corrected else self.G
+        if self.has_yield:
+            pl[:] = 0.0                  # left untouched where the yield wall is left out
+            pl_load[:] = 0.0
+            status = self._kernel(self._grid, self.variant, times, wall, wall, self.sy,
+                                  float(sigma0), float(rtol), False, self.n_damp, area, load,
+                                  pl, pl_load, det_a, det_l, err, self._counts)
+        else:
+            status = self._kernel(self._grid, self.variant, times, wall, wall, self._absent,
+                                  float(sigma0), float(rtol), False, self.n_damp, area, load,
+                                  self._absent, self._absent, det_a, det_l, err, self._counts)
         self.solves += 1
-        self.area = area.copy()
+        self.elastic = area.copy()
+        self.area = area + pl if self.has_yield else self.elastic
         self.area_error = err.copy()
-        return self.update(self.area), int(status)
+        return self.update(self.elastic, self.area), int(status)
 
-    def adhesion_at_one(self, area=None, area_error=None):
+    def adhesion_at_one(self, area=None, area_error=None, elastic=None):
         """gamma_eff(1)/dgamma of an area profile (default: the last one evaluated) and its
         error bar from the diffusion solves' area error estimates. [-]
 
-        g1 = (A(zeta1) - U_el(1)/dgamma) / A(1); an error dA_k of the profile moves it by at
-        most (|dA(zeta1)| + sum_k (wa_k |dA_k| + wb_k |dA_k+1|) max|dF/dA|) / A(1), with
-        F = A S(A) (max|dF/dA| = 1 for S = 1, at most 3 with the energy correction).
+        g1 = (A(zeta1) - U_el(1)/dgamma) / A(1) (A the real area, U_el of the elastic area
+        ``elastic``, which is ``area`` without a yield wall); an error dA_k of the profile
+        moves it by at most (|dA(zeta1)| + sum_k (wa_k |dA_k| + wb_k |dA_k+1|) max|dF/dA|)
+        / A(1), with F = A S(A) (max|dF/dA| = 1 for S = 1, at most 3 with the energy
+        correction).
         """
         from ._kernels.adhesion import elastic_energy_ratio
 
-        a = self.area if area is None else np.asarray(area, dtype=float)
+        if area is None:
+            a, el = self.area, self.elastic
+        else:
+            a = np.asarray(area, dtype=float)
+            el = a if elastic is None else np.asarray(elastic, dtype=float)
         err = np.abs(self.area_error if area_error is None else np.asarray(area_error, float))
         if a[0] <= 0.0:
             return 0.0, 0.0
         u = np.empty(a.size)
-        elastic_energy_ratio(a, self.wa, self.wb, self.gamma_s, u)
+        elastic_energy_ratio(np.ascontiguousarray(el), self.wa, self.wb, self.gamma_s, u)
         slope = 1.0 if self.gamma_s < 0.0 else 3.0
         g1 = (a[-1] - u[0]) / a[0]
         bar = (err[-1] + slope * float(np.sum(self.wa * err[:-1] + self.wb * err[1:]))) / a[0]
         return float(g1), float(bar)
 
+    def _limit_step(self, step, reach):
+        """``step`` scaled down so that it moves the wall at no node by more than ``reach``
+        (the corrected times move with it: one Anderson direction)."""
+        big = float(np.max(np.abs(step[:self.n]) / np.where(reach > 0.0, reach, np.inf)))
+        return step / big if big > 1.0 else step
+
     def rest_state(self, x_start, rtol, *, m_hist, omega, max_iter):
-        """Is there a contact state at p_nom = 0 near ``x_start`` (scaled sigma_a)?
+        """Is there a contact state at p_nom = 0 near ``x_start`` (the scaled iterate)?
 
         Iterates Eqs. 8-9 at sigma0 = 0 (Anderson, the step limited to half the wall's
         value at each node so that no node is clipped to 0, plain relaxation once the
@@ -215,10 +332,10 @@ class _Branch:
 
         Returns a dict (sticky, x, area, g1, g1_error, iterations, residual).
         """
-        w = 1.0 / self.c
+        w = self.weights
         tol = max(PULL_OFF_RESIDUAL * rtol, 1e-13)
         inner = _inner_rtol(rtol)
-        x = np.maximum(np.array(x_start, dtype=float), 0.0)
+        x = self.clip(x_start)
         history = _AndersonHistory(m_hist)
         collapse, a_prev = 0, np.inf
         verdict, res, g1, bar, it = None, np.inf, 0.0, 0.0, 0
@@ -250,26 +367,26 @@ class _Branch:
             if collapse:
                 # plain relaxation: sigma_a(1) falls by the factor 1 - omega, never to 0
                 history.reset()
-                x = x + omega * f
+                x = self.clip(x + omega * f)
                 continue
             step = history.step(x, f, w, omega)
-            reach = PULL_OFF_TRUST * np.maximum(x, x[0])
-            big = float(np.max(np.abs(step) / np.where(reach > 0.0, reach, np.inf)))
-            if big > 1.0:
-                step = step / big
-            x = np.maximum(x + step, 0.0)
+            step = self._limit_step(step, PULL_OFF_TRUST * np.maximum(x[:self.n], x[0]))
+            x = self.clip(x + step)
         return {"sticky": verdict, "x": x.copy(), "area": self.area.copy(), "g1": g1,
                 "g1_error": bar, "iterations": it, "residual": res}
 
     def point(self, y0, x_start, rtol, *, m_hist, omega, trust, max_iter):
         """Branch point at y0 [Pa]: Anderson-accelerated fixed point with a trust region.
 
-        Returns a dict (y0, sigma0 [Pa], x (scaled sigma_a), area, status, iterations,
-        residual, converged).
+        Returns a dict (y0, sigma0 [Pa], x (the scaled iterate), area (the real area
+        profile), status, iterations, residual, converged). A point that converges with its
+        last diffusion solve flagged FAR_LEAK goes on once with that tolerance
+        ``PULL_OFF_LEAK_RETRY`` times tighter.
         """
         y = y0 / self.scale
-        w = 1.0 / self.c
-        x = np.maximum(np.array(x_start, dtype=float), 0.0)
+        w = self.weights
+        n = self.n
+        x = self.clip(x_start)
         tol = max(PULL_OFF_RESIDUAL * rtol, 1e-13)
         inner = self.inner_rtol(rtol, x)
         res = np.inf
@@ -277,6 +394,7 @@ class _Branch:
         x_best = f_best = None
         it_mark = 0
         final = False
+        leak_retried = False
         lost = 0
         history = _AndersonHistory(m_hist)
         status = 0
@@ -292,6 +410,8 @@ class _Branch:
                 r_it = inner
             fx, status = self.evaluate(x, y - x[0], r_it)
             if status in (NONFINITE, BAD_INPUT):
+                break
+            if self.has_yield and status in STRIP_UNRESOLVED:
                 break
             f = fx - x
             res = float(np.max(np.abs(f) * w))
@@ -309,7 +429,7 @@ class _Branch:
                 omega = max(0.5 * omega, 0.1)
                 trust = max(0.5 * trust, 0.05)
                 history.reset()
-                x = np.maximum(x_best + omega * f_best, 0.0)
+                x = self.clip(x_best + omega * f_best)
                 continue
             # the branch is lost when the contact vanishes or sigma_a(1) does
             lost = lost + 1 if (self.area[-1] <= 0.0 or fx[0] <= 0.0) else 0
@@ -317,23 +437,21 @@ class _Branch:
                 break
             if res <= tol:
                 if r_it == inner:
-                    out = x
-                    break
-                final = True        # converged on a loose inner solve: confirm
+                    if (status == FAR_LEAK and not leak_retried
+                            and inner > PULL_OFF_INNER_MIN):
+                        # the far end of the diffusion grid reached: once more, tighter
+                        leak_retried = True
+                        inner = max(PULL_OFF_LEAK_RETRY * inner, PULL_OFF_INNER_MIN)
+                        final = True
+                    else:
+                        out = x
+                        break
+                else:
+                    final = True        # converged on a loose inner solve: confirm
             step = history.step(x, f, w, omega)
-            reach = trust * np.maximum(y + x - x[0], y)
-            big = float(np.max(np.abs(step) / reach))
-            if big > 1.0:
-                step = step / big
-            x = np.maximum(x + step, 0.0)
+            step = self._limit_step(step, trust * np.maximum(y + x[:n] - x[0], y))
+            x = self.clip(x + step)
         converged = out is not None
-        if converged and status == FAR_LEAK and inner > PULL_OFF_INNER_MIN:
-            # the loose diffusion grid let mass reach its far end (a resolution flag, as at
-            # p_nom = 0 in _rest_start): the point again, from here, 10x tighter
-            again = self.point(y0, x, 0.1 * rtol, m_hist=m_hist, omega=omega, trust=trust,
-                               max_iter=max_iter)
-            again["iterations"] += it
-            return again
         return {"y0": float(y0), "sigma0": float((y - x[0]) * self.scale), "x": x.copy(),
                 "area": self.area.copy(), "area_error": self.area_error.copy(),
                 "status": status, "iterations": it, "residual": res, "converged": converged,
@@ -367,6 +485,8 @@ class _Branch:
                 if p["converged"]:
                     p["iterations"] = iterations
                     return p
+                if self.has_yield and p["status"] in STRIP_UNRESOLVED:
+                    break               # the solver's limit, not the iteration's
         p["iterations"] = iterations
         return p
 
@@ -384,8 +504,8 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
     rtol 1e-3 it returned sigma_a(1) = 16 Pa and A(zeta1) = 1.25e-7 while F(x) had
     sigma_a(1) = 0 (gamma_eff(1) < 0), a state on its way to A = 0.
 
-    Returns a dict: sticky (True, False or None: undecided), x (scaled sigma_a to start
-    the descent from), summary (n_zeta, area = A(zeta1)/A0, sigma_a_1 [Pa], gamma_eff_1 and
+    Returns a dict: sticky (True, False or None: undecided), x (the scaled iterate to start
+    the descent from: sigma_a, and the corrected times with a corrected theory), summary (n_zeta, area = A(zeta1)/A0, sigma_a_1 [Pa], gamma_eff_1 and
     gamma_eff_1_error [J/m^2] = g1 dgamma and its error bar, sticky, iterations).
     """
 
@@ -395,7 +515,9 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
         for _ in range(PULL_OFF_REST_RETRIES + 1):
             outs, status, its, _, _ = _run(branch.G, branch.c, branch.wa, branch.wb, gamma_s,
                                            np.array([0.0]), inner, False, controls, None,
-                                           variant, onset=False)
+                                           variant, onset=False, theory=branch.theory_code,
+                                           theory_gamma=branch.theory_gamma,
+                                           sy=branch.sy_rows(1))
             branch.solves += 1
             iterations += int(its[0])
             if (status[0] in (0, WALL_JUMP, RTOL_NOT_MET, NONFINITE, BAD_INPUT)
@@ -404,20 +526,26 @@ def _rest_start(branch, rtol, controls, gamma_s, variant, x_start=None,
             # a resolution flag of a loose solve (e.g. the far end of the grid reached):
             # again with a tighter tolerance
             inner = max(0.1 * inner, PULL_OFF_INNER_MIN)
-        if status[0] not in (0, WALL_JUMP, RTOL_NOT_MET):
+        if status[0] not in (0, WALL_JUMP, RTOL_NOT_MET, NOT_CONVERGED):
             raise RuntimeError(f"pull_off: the contact problem failed at p_nom = 0 Pa "
                                f"({summarize_status(status)[1]}); try a smaller rtol or a "
                                f"finer zeta grid")
-        x, area = outs[1][0].copy(), outs[0][0].copy()
-        g1, bar = branch.adhesion_at_one(area, outs[7][0])
-        if area[-1] <= 0.0 or x[0] <= 0.0:
+        area = outs[0][0].copy()                 # the real area (A_el + A_pl)
+        elastic = area - outs[8][0] if branch.has_yield else area
+        x = branch.state(outs[1][0], area)
+        g1, bar = branch.adhesion_at_one(area, outs[7][0], elastic)
+        if status[0] == NOT_CONVERGED:
+            # the compiled fixed point stopped short (seen with a yield wall at tight
+            # tolerances): its last iterate starts the branch's own iteration, which decides
+            sticky = None
+        elif area[-1] <= 0.0 or x[0] <= 0.0:
             sticky = False
         elif g1 - bar > 0.0:
             sticky = True
         else:
             sticky = None
     else:
-        x, sticky = np.array(x_start, dtype=float), None
+        x, sticky = branch.clip(x_start), None
     if sticky is None:
         r = branch.rest_state(x, rtol, m_hist=controls["m_hist"], omega=controls["omega"],
                               max_iter=max_iter)
@@ -592,9 +720,10 @@ def _locate_minimum(branch, samples, rtol, controls, tol_s):
     return min(ok, key=lambda s: s["sigma0"])["y0"], remaining
 
 
-def _replay(branch, targets, x_dim_start, rtol, controls):
-    """Branch points of a finer grid at the given y0 (descending), from a coarser profile."""
-    x = x_dim_start / branch.scale
+def _replay(branch, targets, x_start, rtol, controls):
+    """Branch points of a finer grid at the given y0 (descending), from ``x_start``, an
+    iterate on this grid (e.g. a coarser grid's carried over, :meth:`_Branch.carry`)."""
+    x = x_start
     points = []
     for y0 in targets:
         p = branch.follow(y0, [x] if not points else [points[-1]["x"], x], rtol, controls)

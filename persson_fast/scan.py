@@ -109,6 +109,18 @@ class ScanWarning(UserWarning):
 # ----------------------------------------------------------------------------------------------
 # the public function
 # ----------------------------------------------------------------------------------------------
+def _check_gap_option(gaps):
+    """False, True, or the gaps [m] of ``scan(gaps=...)`` (validated)."""
+    if isinstance(gaps, (bool, np.bool_)):
+        return bool(gaps)
+    from .gaps import _check_gaps
+
+    try:
+        return _check_gaps(gaps)
+    except ValueError as exc:
+        raise ValueError(f"gaps must be True, False or an array of gaps [m]: {exc}") from None
+
+
 def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
          pressure: ArrayLike, *, e_star: float | None = None, work_of_adhesion: float = 0.0,
          energy_correction: float | None = None,
@@ -120,6 +132,7 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
          theory: str | Sequence[str] = "persson01", theory_gamma: float | None = None,
          separation: bool = False,
          hardness: float | Callable[[np.ndarray], np.ndarray] | ArrayLike | None = None,
+         gaps: bool | ArrayLike = False, gaps_rtol: float | None = None,
          ) -> xarray.Dataset:
     """Contact area over a grid of scenes crossed with nominal pressures.
 
@@ -165,7 +178,7 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         adhesive scenes' grid, which is exact for their closed form.
     pull_off : bool
         Also compute the pull-off stress of every scene with :func:`~persson_fast.pull_off`
-        (0 without adhesion or where the surfaces are not sticky; NaN, with ``success``
+        (of the scene's theory and yield wall; 0 without adhesion or where the surfaces are not sticky; NaN, with ``success``
         False, where it raises; kept, with ``success`` False, where its error estimate
         exceeds ``pull_off_rtol``). [Pa]
     pull_off_rtol : float or None
@@ -189,8 +202,8 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
     theory : str or sequence of str
         The area theory of the solves (as in :func:`~persson_fast.solve_contact`:
         "persson01", the default, or a corrected one: "yp08" and "wm17" for every scene,
-        "xu24" for scenes without adhesion or hardness; ``pull_off`` with adhesion needs
-        "persson01"). A string is held fixed and recorded in ``attrs``. A
+        "xu24" for scenes without adhesion or hardness; ``pull_off`` follows each scene's
+        own theory and yield wall). A string is held fixed and recorded in ``attrs``. A
         sequence of distinct theories is an axis ``theory`` of the result, after the axes of
         ``params``; each of its entries gives bitwise the numbers of a scan with that theory
         held fixed, and ``attrs["theory"]`` and ``attrs["theory_gamma"]`` are then "". [-]
@@ -212,6 +225,13 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         Also return the mean interfacial separation, the contact stiffness and the stored
         elastic energy of every scene and pressure (scenes without adhesion, theory
         "persson01"; otherwise a ValueError before anything is solved).
+    gaps : bool or array_like
+        Also return the distribution of interfacial gaps (:func:`~persson_fast.gap_distribution`)
+        of every scene and pressure > 0, on a common ``gap`` axis: True takes the union of the
+        scenes' default grids, an array (increasing, >= 0) [m] is taken as it is. Scenes as for
+        ``separation`` (otherwise a ValueError before anything is solved).
+    gaps_rtol : float or None
+        Tolerance of the gap distributions (default 1e-3, that of gap_distribution). [-]
 
     Returns
     -------
@@ -236,6 +256,12 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
           (..., pressure) -- with ``separation``: the mean interfacial separation, the
           contact stiffness -dp/du and U_el of each scene (closed form,
           :func:`~persson_fast.solve_separation`; inf, 0, 0 where p <= 0).
+        * ``gap_density`` [1/m] (..., pressure, gap), ``mean_gap`` [m] and
+          ``gap_weight_error`` [-] (..., pressure) -- with ``gaps``: the density of the
+          interfacial gap outside the contact (the contact fraction, at u = 0, is ``area``),
+          its mean (u(p)) and |trapz(density, gap) + area - 1| on the ``gap`` axis; NaN where
+          p <= 0 or the scene's gap distribution raised. A flagged distribution sets the
+          scene's ``success`` False and says why in ``message``.
 
         Fixed parameters are scalar coordinates; ``attrs`` hold the surface model, method,
         rtol and how the scan ran. ``ds.to_dataframe()`` gives one row per (scene, pressure).
@@ -319,12 +345,6 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         if corrected[k] and (adhesive[k] or yielding[k]):
             kw = grid.scenes[k][2]
             check_theory_scene(kw["theory"], kw["work_of_adhesion"], kw.get("hardness"))
-            if pull_off and adhesive[k]:
-                raise ValueError(
-                    f"pull_off=True follows the original theory's contact branch only: the "
-                    f"scene {grid.labels[k]} has work_of_adhesion > 0 and theory = "
-                    f"{grid.scenes[k][2]['theory']!r}; scan the pull-off with "
-                    f"theory='persson01'")
     if any(yielding):
         i = yielding.index(True)
         if separation:
@@ -342,6 +362,17 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         raise ValueError(f"separation=True needs scenes without adhesion and the original "
                          f"theory (persson01): the separation is not derived otherwise here; "
                          f"{which}")
+    gap_grid = _check_gap_option(gaps)
+    gaps_rtol = 1e-3 if gaps_rtol is None else _check_rtol(gaps_rtol, "gaps_rtol")
+    if gap_grid is not False and (any(corrected) or any(adhesive) or any(yielding)):
+        which = (f"theory = {grid.scenes[corrected.index(True)][2]['theory']!r}"
+                 if any(corrected) else
+                 f"the scene {grid.labels[adhesive.index(True)]} has work_of_adhesion > 0"
+                 if any(adhesive) else
+                 f"the scene {grid.labels[yielding.index(True)]} has hardness")
+        raise ValueError(f"gaps needs scenes without adhesion or yield wall and the original "
+                         f"theory (persson01): the gap distribution is not derived otherwise "
+                         f"here; {which}")
     profile_zeta = None
     zeta_plain = zeta_adhesive = zeta
     if profiles:
@@ -351,7 +382,8 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
                "zeta_adhesive": zeta_adhesive, "profile_zeta": profile_zeta,
                "profiles": bool(profiles), "pull_off": bool(pull_off),
                "pull_off_rtol": pull_off_rtol, "parallel": None,
-               "separation": bool(separation), "yield_wall": any(yielding)}
+               "separation": bool(separation), "yield_wall": any(yielding),
+               "gaps": gap_grid, "gaps_rtol": gaps_rtol}
     if workers is None:
         import numba
 
@@ -389,6 +421,7 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
                     "hardness": ("" if hardness is None or "hardness" in params else
                                  hardness if isinstance(hardness, float) else repr(hardness)),
                     "pull_off_rtol": pull_off_rtol if pull_off else "",
+                    "gaps_rtol": gaps_rtol if options["gaps"] is not False else "",
                     "execution": execution, "wall_time_s": wall,
                     "persson_fast_version": __version__})
     summary = _failure_summary(grid, results, p.size)

@@ -51,6 +51,40 @@ def _failure_summary(grid, results, n_p):
     return "\n".join(lines)
 
 
+def _gap_variables(data, coords, results, options, shape, per_p, n_p):
+    """``gap_density``, ``mean_gap`` and ``gap_weight_error`` on a common ``gap`` axis: the
+    given gaps, or the union of the scenes' default grids (each scene's components evaluated
+    there, :meth:`~persson_fast.gaps.GapDistribution.density_at`)."""
+    dists = [res["gaps"] for res in results]
+    if options["gaps"] is True:
+        grids = [g.gaps for _, g in dists if g is not None]
+        u = np.unique(np.concatenate(grids)) if grids else np.array([0.0, 1.0])
+    else:
+        u = np.asarray(options["gaps"], dtype=float)
+    n = len(results)
+    density = np.full((n, n_p, u.size), np.nan)
+    mean = np.full((n, n_p), np.nan)
+    weight_error = np.full((n, n_p), np.nan)
+    for i, (positive, g) in enumerate(dists):
+        if g is None:
+            continue
+        dens = g.density if g.gaps.size == u.size and np.array_equal(g.gaps, u) else \
+            g.density_at(u)
+        density[i, positive] = dens
+        mean[i, positive] = g.mean
+        trap = np.sum(0.5 * (dens[:, 1:] + dens[:, :-1]) * np.diff(u), axis=1)
+        weight_error[i, positive] = np.abs(trap + g.contact_fraction - 1.0)
+    coords["gap"] = ("gap", u, {"long_name": "interfacial gap", "units": "m"})
+    data["gap_density"] = (per_p + ("gap",), density.reshape(shape + (n_p, u.size)),
+                           {"long_name": "probability density of the interfacial gap outside "
+                                         "the contact", "units": "1/m"})
+    data["mean_gap"] = (per_p, mean.reshape(shape + (n_p,)),
+                        {"long_name": "mean interfacial gap (the separation u)", "units": "m"})
+    data["gap_weight_error"] = (per_p, weight_error.reshape(shape + (n_p,)),
+                                {"long_name": "|trapz(gap_density, gap) + area - 1|",
+                                 "units": "-"})
+
+
 def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
     shape = grid.shape
     n_p = p.size
@@ -111,6 +145,8 @@ def _assemble(xr, grid, p, results, options, profile_zeta, attrs):
         data["elastic_energy"] = (per_p, stack("elastic_energy", float, (n_p,)),
                                   {"long_name": "stored elastic energy U_el per nominal area",
                                    "units": "J/m^2"})
+    if options.get("gaps") is not False and options.get("gaps") is not None:
+        _gap_variables(data, coords, results, options, shape, per_p, n_p)
     if options["pull_off"]:
         data["pull_off"] = (dims, stack("pull_off", float),
                             {"long_name": "pull-off stress sigma_c", "units": "Pa"})

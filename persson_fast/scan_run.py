@@ -53,6 +53,26 @@ def _failure(what, exc) -> str:
     return f"{what} raised {type(exc).__name__}" + (f": {text}" if text else "")
 
 
+def _gap_part(surface, solve_kw, pressure, options, out, failures):
+    """The scene's gap distribution at its pressures > 0 (``out["gaps"]``: the pressure mask
+    and the :class:`~persson_fast.gaps.GapDistribution`, or None where it raised)."""
+    from .gaps import gap_distribution
+
+    positive = pressure > 0.0
+    grid = options["gaps"]
+    try:
+        g = gap_distribution(surface, pressure[positive], e_star=solve_kw["e_star"],
+                             energy_correction=solve_kw.get("energy_correction"),
+                             gaps=None if grid is True else grid, rtol=options["gaps_rtol"])
+    except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
+        out["gaps"] = (positive, None)
+        failures.append(_failure("gap_distribution", exc))
+        return
+    out["gaps"] = (positive, g)
+    if not g.success:
+        failures.append(f"gap_distribution: {g.message}")
+
+
 def _solve_scene(surface, solve_kw, pressure, options):
     """Solve one scene at every pressure; a dict of plain arrays and strings.
 
@@ -131,6 +151,8 @@ def _solve_scene(surface, solve_kw, pressure, options):
                 out["area_zeta"][rows] = r.area_zeta
                 out["sigma_a"][rows] = r.sigma_a
                 out["gamma_eff"][rows] = r.gamma_eff
+    if options.get("gaps") is not False and options.get("gaps") is not None:
+        _gap_part(surface, solve_kw, pressure, options, out, failures)
     if options["pull_off"]:
         try:
             # pull_off warns when its estimate misses rtol; info["converged"] says the same
@@ -138,12 +160,11 @@ def _solve_scene(surface, solve_kw, pressure, options):
             # of these filter changes between threads)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", RuntimeWarning)
-                if solve_kw.get("hardness") is not None:
-                    raise ValueError("pull_off with a yield wall (hardness) is not available")
-                adhesive_kw = {k: v for k, v in solve_kw.items() if k in SOLVE_PARAMETERS
-                               and k != "hardness"}
+                # the scene as solved: its theory and yield wall included
+                pull_kw = {k: v for k, v in solve_kw.items()
+                           if k in SOLVE_PARAMETERS or k in ("theory", "theory_gamma")}
                 sigma_c, info = _pull_off(surface, rtol=options["pull_off_rtol"],
-                                          full_output=True, bracket=False, **adhesive_kw)
+                                          full_output=True, bracket=False, **pull_kw)
         except Exception as exc:  # noqa: BLE001 -- recorded: the scan goes on
             out["pull_off"] = out["pull_off_error"] = math.nan
             failures.append(_failure("pull_off", exc))

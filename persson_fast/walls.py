@@ -26,7 +26,10 @@ is therefore refined until, at every probe point,
 
 with the smallest gap over the pressures in contact (the most demanding one) and a rounding
 floor. The wall's share of the error budget is WALL_BUDGET = 0.25 of rtol with kappa = 1,
-about 0.06 rtol in practice.
+about 0.06 rtol in practice. The kernels estimate the error of the sampled wall only;
+:meth:`WallSampling.area_error` estimates the chords' own part, per pressure and output time,
+by the same bound summed over the final intervals with their actual deviations (1-5x the
+sampling error on the square-root wall); a caller adds it to the kernel's estimate.
 
 Refinement
 ----------
@@ -47,10 +50,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["WallSampling", "sample_wall", "check_wall_callable", "check_kinks"]
+__all__ = ["WallSampling", "sample_wall", "check_wall_callable", "check_kinks",
+           "CallableWallError"]
 
 #: share of rtol given to the wall's interpolation error (with the bound's kappa = 1) [-]
 WALL_BUDGET = 0.25
+#: the constant of the bound in :meth:`WallSampling.area_error` (an upper bound; measured
+#: 0.2-0.3 on the square-root wall) [-]
+KAPPA = 1.0
 #: a child interval whose deviation fell less than this factor marks a kink (smooth: 4) [-]
 KINK_DROP = 2.8
 #: a kink is refined until its deviation is below this fraction of the tolerance [-]
@@ -92,6 +99,9 @@ class WallSampling:
     worst_ratio : float -- largest probe deviation over its tolerance at the end (<= 1 when
         the tolerance was met). [-]
     n_inserted : int -- points added to the user's times, G = 0 and the kinks.
+    leaves : (5, n_l) -- the final intervals of the refinement: their ends a, b [Pa^2], the
+        largest deviation of the callable from the chord at their probes [Pa], the callable
+        at their midpoints [Pa] and the chord's slope [-]; what :meth:`area_error` sums.
     """
 
     G: np.ndarray
@@ -102,42 +112,106 @@ class WallSampling:
     capped: bool = False
     worst_ratio: float = 0.0
     n_inserted: int = 0
+    leaves: np.ndarray = field(default_factory=lambda: np.zeros((5, 0)))
+
+    def area_error(self, pressure, area, kappa: float = KAPPA) -> np.ndarray:
+        """An estimate of the area error the chords make, at the user's times.
+
+        The comparison-principle bound of the module docstring, summed over the final
+        intervals with their own deviations instead of the tolerance: an interval [a, b]
+        whose chord is e off the callable moves the area at every later G by at most
+
+            kappa * A * e / l * exp(-gap^2 / 4m) * ln(b / a),
+
+        l = min(sqrt(2m), 1/|v|) (v the chord's slope where the wall moves into the
+        distribution), m the midpoint, gap = pressure + sigma_a(m) (zero where the pressure
+        is separated from the start); ln(b/a) is the e-folds of G it spans (1 for the
+        interval from G = 0). Errors of one sign add, so the sum over the intervals up to G
+        is the estimate there. kappa = 1 bounds what was measured (0.2-0.3 on the square-root
+        wall): the estimate is 1-5x the sampling error.
+
+        Parameters
+        ----------
+        pressure : (n_p,) -- nominal stresses. [Pa]
+        area : (n_p, n_t) -- the area at the user's times. [-]
+        kappa : float -- the constant of the bound. [-]
+
+        Returns
+        -------
+        (n_p, n_t) -- the estimated absolute error of the area. [-]
+        """
+        p = np.atleast_1d(np.asarray(pressure, dtype=np.float64))
+        area = np.asarray(area, dtype=np.float64)
+        user_G = self.G[self.index]
+        out = np.zeros(area.shape)
+        if self.leaves.shape[1] == 0:
+            return out
+        a, b, dev, f_mid, slope = self.leaves
+        m = 0.5 * (a + b)
+        ell = np.sqrt(2.0 * m)
+        ell = np.where(slope < 0, np.minimum(ell, 1.0 / np.maximum(-slope, 1e-300)), ell)
+        efolds = np.where(a > 0, np.log(np.where(a > 0, b / np.where(a > 0, a, 1.0), 1.0)),
+                          1.0)
+        order = np.argsort(b, kind="stable")
+        b_sorted = b[order]
+        # the last interval ending at or before each user time
+        upto = np.searchsorted(b_sorted, user_G * (1.0 + 1e-12), side="right")
+        for k in range(p.size):
+            if not p[k] + self.sigma_a[0] > 0:
+                continue
+            gap = np.maximum(0.0, p[k] + f_mid)
+            factor = np.exp(-np.minimum(gap * gap / (4.0 * m), 700.0))
+            c = kappa * dev / ell * factor * efolds
+            cum = np.concatenate([[0.0], np.cumsum(c[order])])
+            out[k] = area[k] * cum[upto]
+        return out
 
 
-def _call(func, x: np.ndarray) -> np.ndarray:
-    """func(x) as a finite float64 array of x's shape, or a ValueError naming sigma_a."""
+class CallableWallError(ValueError):
+    """A callable wall (or the callable it is built from, e.g. a hardness of zeta) failed or
+    returned what a wall cannot be; the message names the argument the user gave."""
+
+
+def _call(func, x: np.ndarray, name: str = "sigma_a") -> np.ndarray:
+    """func(x) as a finite float64 array of x's shape, or a ValueError naming the wall
+    ``name`` (the argument the callable was given as: "sigma_a" or "sigma_y"). A
+    :class:`CallableWallError` raised inside ``func`` (by a wrapper that names the user's own
+    argument, e.g. ``hardness``) passes through unchanged."""
     try:
         y = func(x.copy())
+    except CallableWallError:
+        raise
     except Exception as exc:  # noqa: BLE001 -- any failure of the user's code is reported
-        raise ValueError(
-            f"sigma_a must be samples or a vectorised callable G [Pa^2] -> sigma_a [Pa]; "
+        raise CallableWallError(
+            f"{name} must be samples or a vectorised callable G [Pa^2] -> {name} [Pa]; "
             f"calling it on an array of {x.size} diffusion times in [{x.min() if x.size else 0:.6g}, "
             f"{x.max() if x.size else 0:.6g}] Pa^2 raised {type(exc).__name__}: {exc}"
         ) from exc
     try:
         arr = np.asarray(y, dtype=np.float64)
     except (TypeError, ValueError) as exc:
-        raise ValueError(
-            f"sigma_a(G) must return real numbers [Pa]; got {type(y).__name__} {y!r:.80}"
+        raise CallableWallError(
+            f"{name}(G) must return real numbers [Pa]; got {type(y).__name__} {y!r:.80}"
         ) from exc
     if arr.shape != x.shape:
-        raise ValueError(
-            f"sigma_a(G) must return an array of G's shape {x.shape} (a vectorised callable, "
+        raise CallableWallError(
+            f"{name}(G) must return an array of G's shape {x.shape} (a vectorised callable, "
             f"e.g. written with numpy functions) [Pa]; got shape {arr.shape}"
         )
     bad = ~np.isfinite(arr)
     if np.any(bad):
         i = int(np.argmax(bad))
-        raise ValueError(
-            f"sigma_a(G) must be finite [Pa] for every G in [0, G[-1]] (a callable wall is "
-            f"followed from G = 0); got sigma_a({x[i]!r}) = {arr[i]!r}"
+        raise CallableWallError(
+            f"{name}(G) must be finite [Pa] for every G in [0, G[-1]] (a callable wall is "
+            f"followed from G = 0); got {name}({float(x[i])!r}) = {float(arr[i])!r}"
         )
     return arr
 
 
-def check_wall_callable(func, G: np.ndarray) -> np.ndarray:
-    """Validate a callable wall on the user's times: the finite values there [Pa]."""
-    return _call(func, np.ascontiguousarray(G, dtype=np.float64))
+def check_wall_callable(func, G: np.ndarray, name: str = "sigma_a") -> np.ndarray:
+    """Validate a callable wall on the user's times: the finite values there [Pa]; errors
+    name the wall as ``name``."""
+    return _call(func, np.ascontiguousarray(G, dtype=np.float64), name)
 
 
 def check_kinks(kinks, g_end: float) -> np.ndarray:
@@ -198,7 +272,7 @@ def _cluster(found, g_end: float) -> np.ndarray:
 
 
 def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int = MAX_POINTS,
-                at_user: np.ndarray | None = None) -> WallSampling:
+                at_user: np.ndarray | None = None, name: str = "sigma_a") -> WallSampling:
     """Sample a callable wall on a schedule fine enough for ``rtol``.
 
     Parameters
@@ -211,6 +285,7 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
         exactly. [Pa^2]
     max_points : int -- cap on the schedule length.
     at_user : (n_t,) or None -- func(G) when already evaluated (validated). [Pa]
+    name : str -- the argument the wall was given as, named in errors ("sigma_a", "sigma_y").
 
     Returns
     -------
@@ -223,21 +298,21 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
     G = np.ascontiguousarray(G, dtype=np.float64)
     p = np.atleast_1d(np.asarray(pressure, dtype=np.float64))
     if at_user is None:
-        at_user = check_wall_callable(func, G)
+        at_user = check_wall_callable(func, G, name)
     g_end = float(G[-1])
     k_decl = check_kinks(kinks, g_end)
     base = np.unique(np.concatenate([[0.0], G, k_decl]))
     if base.size < 2:
-        f0 = _call(func, base)
+        f0 = _call(func, base, name)
         return WallSampling(G=base, sigma_a=f0, index=np.searchsorted(base, G), at_user=at_user)
     pts = _seed(base)
-    vals = _call(func, pts)
+    vals = _call(func, pts, name)
     # the most demanding pressure: the smallest one in contact at G = 0
     in_contact = p + vals[0] > 0
     if not np.any(in_contact):
         # every pressure is separated from the start: the wall is never met
         sched = base
-        sv = _call(func, sched)
+        sv = _call(func, sched, name)
         return WallSampling(G=sched, sigma_a=sv, index=np.searchsorted(sched, G),
                             at_user=at_user)
     p_min = float(np.min(p[in_contact]))
@@ -284,7 +359,7 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
     a, b = pts[:-1], pts[1:]
     fa, fb = vals[:-1], vals[1:]
     q1, m, q3 = probes(a, b)
-    fq = _call(func, np.concatenate([q1, m, q3])).reshape(3, -1)
+    fq = _call(func, np.concatenate([q1, m, q3]), name).reshape(3, -1)
     fq1, fm, fq3 = fq
     kink = np.zeros(a.shape, dtype=bool)
     r, dev = ratios(a, b, fa, fb, (q1, m, q3), (fq1, fm, fq3))
@@ -300,8 +375,8 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
         stuck = fail & tiny
         if np.any(stuck & (r > 1.0)):
             i = int(np.flatnonzero(stuck & (r > 1.0))[0])
-            raise ValueError(
-                f"sigma_a(G) must be continuous [Pa] (a callable wall is sampled linearly "
+            raise CallableWallError(
+                f"{name}(G) must be continuous [Pa] (a callable wall is sampled linearly "
                 f"between points); near G = {a[i]:.17g} Pa^2 it changes from {fa[i]!r} to "
                 f"{fb[i]!r} over an interval of {b[i] - a[i]:.3g} Pa^2. Give a jumping wall "
                 f"as samples with a repeated G value at the jump"
@@ -332,7 +407,7 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
         nfm = np.concatenate([FQ1, FQ3])
         nq1 = _split_points(na, nm)
         nq3 = _split_points(nm, nb)
-        fnew = _call(func, np.concatenate([nq1, nq3])).reshape(2, -1)
+        fnew = _call(func, np.concatenate([nq1, nq3]), name).reshape(2, -1)
         nr, ndev = ratios(na, nb, nfa, nfb, (nq1, nm, nq3), (fnew[0], nfm, fnew[1]))
         pd = np.concatenate([parent_dev, parent_dev])
         # deviation falling less than x KINK_DROP: a kink (or a jump) in the child
@@ -375,8 +450,10 @@ def sample_wall(func, G, pressure, rtol: float, kinks=None, *, max_points: int =
     if np.any(kink):
         kinks_found.extend(0.5 * (a[kink] + b[kink]))
     index = np.searchsorted(sched, G)
+    slope = (fb - fa) / (b - a)
     return WallSampling(
         G=sched, sigma_a=sval, index=index, at_user=at_user,
         kinks_found=_cluster(kinks_found, g_end), capped=capped,
         worst_ratio=worst, n_inserted=int(sched.size - base.size),
+        leaves=np.stack([a, b, dev, fm, slope]),
     )

@@ -112,10 +112,10 @@ def _strip(G, pressure, sigma_a, sigma_y, *, method, kinks, level, rtol, n_damp,
     sampled, capped, user, wall_share = [], [], {}, 0.0
     for name, wall, sign in (("sigma_a", sigma_a, 1.0), ("sigma_y", sigma_y, -1.0)):
         if callable(wall):
-            at_user = check_wall_callable(wall, G)
+            at_user = check_wall_callable(wall, G, name)
             # the yield wall in the mirror sigma -> -sigma is a detachment wall for -p
             tol, kappa = (rtol, 1.0) if sign > 0 else (rtol * YIELD_SAMPLING, YIELD_KAPPA)
-            s = sample_wall(wall, G, sign * p, tol, kinks, at_user=at_user)
+            s = sample_wall(wall, G, sign * p, tol, kinks, at_user=at_user, name=name)
             sampled.append(s.G)
             capped.append(s.capped)
             wall_share += kappa * WALL_BUDGET * s.worst_ratio * tol / rtol
@@ -129,7 +129,7 @@ def _strip(G, pressure, sigma_a, sigma_y, *, method, kinks, level, rtol, n_damp,
     rows = {}
     for name, wall in (("sigma_a", sigma_a), ("sigma_y", sigma_y)):
         if callable(wall):
-            vals = _call(wall, U)
+            vals = _call(wall, U, name)
             rows[name] = np.broadcast_to(vals, (n_p, U.size)).copy()
         else:
             rows[name] = _on_schedule(user[name], G, U)

@@ -67,3 +67,29 @@ def test_jump_reference_is_the_images_before_and_continuous_at_the_jump():
     # the wall moved away at the jump: more survives than with the wall kept at 0.2
     assert a[3] > pf.images_area(0.7, 1.0)
     assert abs(jump_reference(G, n=400)[3] - a[3]) < 1e-13
+
+
+def test_random_wall_stats_on_two_walls():
+    """The random-wall table's counts add up; a result outside rtol with status 0 is a MISS
+    (checked with a reference made wrong on purpose)."""
+    from benchmarks import contract_table as ct
+    from benchmarks import random_walls
+
+    stats, misses = ct.random_wall_stats(2, (1e-4,), ("cn",))
+    s = stats[("cn", 1e-4)]
+    assert s["n"] == 4 and s["refused"] == 0 and s["nan"] == 0     # 2 walls x 2 forms
+    assert s["miss"] == 0 and not misses and s["flagged_within"] <= s["flagged"]
+    assert s["est_min"] is None or s["est_min"] > 0
+    real = random_walls.with_reference
+
+    def wrong(wall):
+        wall = real(wall)
+        wall.ref = wall.ref * (1 + 1e-2)
+        return wall
+
+    random_walls.with_reference = wrong
+    try:
+        stats, misses = ct.random_wall_stats(1, (1e-4,), ("cn",))
+    finally:
+        random_walls.with_reference = real
+    assert stats[("cn", 1e-4)]["miss"] == 2 and len(misses) == 2

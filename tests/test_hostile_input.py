@@ -349,28 +349,48 @@ def test_config_whole_number_keys_are_not_truncated(tmp_path, capsys):
     assert "surface.bins_per_decade must be a whole number; got 10.5" in capsys.readouterr().err
 
 
-@pytest.mark.parametrize("flags, match", [
-    (["--theory", "wm17", "--work-of-adhesion", "0.05", "--pull-off"],
-     r"--pull-off is not yet available for the corrected theories.*got --theory wm17"),
-    (["--theory", "yp08", "--work-of-adhesion", "0.05", "--pull-off"],
-     r"not yet available for the corrected theories.*--theory yp08"),
-    (["--theory", "xu24", "--pull-off"], r"not yet available for the corrected theories"),
-    (["--hardness", "1e8", "--pull-off"], r"--pull-off is not yet available with a yield wall"),
+@pytest.mark.parametrize("flags, kw", [
+    (["--theory", "wm17", "--work-of-adhesion", "0.05"], {"theory": "wm17",
+                                                          "work_of_adhesion": 0.05}),
+    (["--theory", "yp08", "--work-of-adhesion", "0.05"], {"theory": "yp08",
+                                                          "work_of_adhesion": 0.05}),
+    (["--theory", "xu24"], {"theory": "xu24", "work_of_adhesion": 0.0}),
+    (["--hardness", "1e8", "--work-of-adhesion", "0.05"], {"hardness": 1e8,
+                                                            "work_of_adhesion": 0.05}),
 ])
-def test_pull_off_refused_where_not_available(capsys, flags, match):
-    assert _contact(*_SA_FLAGS, "--pressure", "1e5", *flags) == 2
+def test_pull_off_of_the_scene_as_solved(capsys, flags, kw):
+    """--pull-off with a corrected theory or a yield wall prints that scene's pull-off
+    stress (refused before pull_off served them); this scene is not sticky: 0."""
+    assert _contact(*_SA_FLAGS, "--pressure", "1e5", "--rtol", "1e-3", *flags,
+                    "--pull-off") == 0
     out = capsys.readouterr()
-    assert re.search(match, out.err) and "Traceback" not in out.err
-    assert "pull-off stress" not in out.out                  # refused before solving
+    expected = pf.pull_off(pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6), e_star=1e9,
+                           rtol=1e-3, **kw)
+    assert f"pull-off stress: {expected:.5g} Pa" in out.out and "Traceback" not in out.err
 
 
-def test_pull_off_refused_from_config_too(tmp_path, capsys):
+def test_pull_off_refusal_is_in_one_place(monkeypatch, capsys):
+    """A theory outside cli_config.PULL_OFF_THEORIES (or a yield wall while
+    PULL_OFF_WITH_HARDNESS is False) is refused there, before solving (exit code 2)."""
+    from persson_fast import cli_config
+
+    monkeypatch.setattr(cli_config, "PULL_OFF_THEORIES", ("persson01",))
+    assert _contact(*_SA_FLAGS, "--pressure", "1e5", "--theory", "wm17", "--pull-off") == 2
+    out = capsys.readouterr()
+    assert re.search(r"--pull-off is not available for --theory wm17", out.err)
+    assert "pull-off stress" not in out.out
+    monkeypatch.setattr(cli_config, "PULL_OFF_WITH_HARDNESS", False)
+    assert _contact(*_SA_FLAGS, "--pressure", "1e5", "--hardness", "1e8", "--pull-off") == 2
+    assert "--pull-off is not available with a yield wall" in capsys.readouterr().err
+
+
+def test_pull_off_from_config_with_a_corrected_theory(tmp_path, capsys):
     config = tmp_path / "scene.toml"
-    config.write_text("e_star = 1e9\npressures = [1e5]\ntheory = 'wm17'\nwork_of_adhesion = "
-                      "0.05\npull_off = true\n[surface]\nmodel = 'self-affine'\nhurst = 0.8\n"
-                      "q0 = 1e4\nq1 = 1e9\nh_rms = 1e-6\n")
-    assert _contact("--config", str(config)) == 2
-    assert "not yet available for the corrected theories" in capsys.readouterr().err
+    config.write_text("e_star = 1e9\npressures = [1e5]\nrtol = 1e-3\ntheory = 'wm17'\n"
+                      "work_of_adhesion = 0.05\npull_off = true\n[surface]\nmodel = "
+                      "'self-affine'\nhurst = 0.8\nq0 = 1e4\nq1 = 1e9\nh_rms = 1e-6\n")
+    assert _contact("--config", str(config)) == 0
+    assert "pull-off stress: " in capsys.readouterr().out
 
 
 def test_pull_off_without_adhesion_is_zero_not_silent(tmp_path, capsys):

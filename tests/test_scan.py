@@ -474,10 +474,6 @@ def test_scan_theory_with_adhesion_is_refused():
         pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6,
                                 "work_of_adhesion": [0.0, 0.05]}, [1e6], e_star=1e9,
                 theory="xu24")
-    with pytest.raises(ValueError, match="pull_off=True follows the original theory"):
-        pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6,
-                                "work_of_adhesion": [0.0, 0.05]}, [1e6], e_star=1e9,
-                theory=["persson01", "yp08"], pull_off=True)
     with pytest.raises(ValueError, match="theory must be one of"):
         pf.scan(pf.SelfAffine, {"hurst": 0.8, "q0": 1e4, "q1": 1e9, "h_rms": 1e-6}, [1e6],
                 e_star=1e9, theory="yp09")

@@ -28,3 +28,19 @@ LOAD_CONSERVATION = 1e-8
 TWIN = 1e-12
 #: areas may overshoot [0, 1] by rounding of the extrapolation
 BOUNDS = 1e-12
+#: random kinked walls (test_random_walls.py): the error estimate must be at least this share
+#: of the error at every returned G (the contract's "estimate within a small factor"; the
+#: estimate's role is to trigger refinement before the error reaches rtol) ...
+RANDOM_WALL_EST_FLOOR_RATIO = 0.5
+#: ... where the error is above this share of the tolerance rtol A + 1e-12: errors far inside
+#: the tolerance cannot break the contract, and right after a kink the extrapolated value
+#: keeps an erratic residual of ~1e-3 of the un-extrapolated error that no three-run ladder
+#: sees (measured: 0.15 rtol with an estimate of 0.015 rtol, seed 4 at rtol 1e-6)
+RANDOM_WALL_EST_JUDGED_FRACTION = 0.2
+#: gap distribution: its mean against solve_separation's u(p), both quadratures of the same
+#: integral to ~1e-13 (measured 1e-16 to 4e-11 relative on a two-decade self-affine scene,
+#: p/E* 1e-4 to 0.5; the larger where u is 1e-7 h_rms, many terms cancelling)
+GAP_MEAN = 1e-9
+#: ... the reference twin (quad in zeta of finite differences of quad-in-q gap volumes): its
+#: own error, measured against the package at rtol 1e-5 (4e-6 and 6e-6 relative), bounded
+GAP_TWIN = 3e-5
