@@ -97,4 +97,5 @@ html_show_sourcelink = False
 # construct them), so their constructor parameters are not checked against "Parameters"
 numpydoc_validation_exclude = {
     r"\.ContactResult$", r"\.DiffusionResult$", r"\.SeparationResult$", r"\.ContactLaw$",
+    r"\.GapDistribution$",
 }

@@ -18,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from . import analytic
-from ._kernels.status import GRID_CAP, LOST_CONTACT
+from ._kernels.status import GRID_CAP, LOST_CONTACT, RTOL_NOT_MET
 from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
                           check_nondecreasing, check_nonnegative, wall_rows)
 from ._jit import compiling_beside
@@ -217,8 +217,11 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
     (a linear callable), else "cn"; "bnr" and "fixed-grid" receive the same samples ("bnr"
     grades every sample like a kink: its cost grows with their number). More than
     ``walls.MAX_POINTS`` samples: the refinement stops, status GRID_CAP and the message
-    says so. ``timings["sample_wall"]`` is the sampling time; ``sigma_a`` of the result is
-    the callable at G.
+    says so. ``error_estimate`` adds the chords' own part of the area error
+    (``WallSampling.area_error``, the same bound summed over the final intervals with their
+    actual deviations: 1-5x the sampling error where measured), and a result whose estimate
+    then exceeds rtol is flagged (status 15). ``timings["sample_wall"]`` is the sampling
+    time; ``sigma_a`` of the result is the callable at G.
     """
     if method is None:
         method = _default_diffusion_method(sigma_y, level, kinks)
@@ -318,6 +321,14 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
                 out[name] = np.ascontiguousarray(out[name][:, wall.index])
         if wall.capped:
             out["status"] = np.where(out["status"] == 0, GRID_CAP, out["status"])
+        if use != "analytic":
+            # the chords' own part of the area error (the kernels see only the samples)
+            sampling = wall.area_error(p, out["area"])
+            out["error_estimate"] = out["error_estimate"] + sampling
+            if level is None:
+                miss = np.any(out["error_estimate"] > rtol * np.abs(out["area"]) + 1e-12, axis=1)
+                out["status"] = np.where((out["status"] == 0) & miss, RTOL_NOT_MET,
+                                         out["status"])
     success, message = summarize_status(out["status"])
     if wall is not None and wall.capped:
         message += (f"; the callable sigma_a needed more than {wall.G.size} samples for rtol "

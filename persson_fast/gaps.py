@@ -134,8 +134,8 @@ class GapDistribution:
     mean : (n_p,) -- the mean gap of the distribution (the contact counted at u = 0); with
         shape "truncated" it equals ``separation`` (to ``mean_error``). [m]
     separation : (n_p,) -- :func:`persson_fast.solve_separation`'s u(p), for comparison. [m]
-    weight_error : (n_p,) -- |trapz(density, gaps) + contact_fraction - 1| on ``gaps``. [-]
-    mean_error : (n_p,) -- shape "truncated": |mean - separation|, the difference from an
+    weight_error : (n_p,) -- abs(trapz(density, gaps) + contact_fraction - 1) on ``gaps``. [-]
+    mean_error : (n_p,) -- shape "truncated": abs(mean - separation), the difference from an
         independent quadrature of u(p); "folded": the change of the mean from cells twice as
         wide. [m]
     error_estimate : (n_p,) -- estimated error of the density from the magnification
@@ -437,7 +437,7 @@ def gap_distribution(surface: Surface | Scene, pressure: ArrayLike, *,
         with the mean Persson's theory gives it; the mean of the whole is then
         :func:`persson_fast.solve_separation`'s u(p)) or "folded" (Almqvist et al. 2011: the
         same Gaussian mirrored at u = 0, whose mean exceeds u(p)). See
-        :mod:`persson_fast.gaps`.
+        the module ``persson_fast.gaps``.
     rtol : float
         Tolerance (default 1e-3) of the density's magnification quadrature (relative to its
         peak: the cells are halved until the estimate meets it, down to a width of 1/64 in

@@ -458,7 +458,8 @@ class _Branch:
                 "flag_error": self.flag_error(status)}
 
     def flag_error(self, status):
-        """Error of sigma0 [Pa] charged for a last diffusion solve flagged RTOL_NOT_MET.
+        """Error of sigma0 [Pa] charged for a last diffusion solve flagged RTOL_NOT_MET or
+        GRID_CAP (refined to its work cap or its node cap).
 
         Such a solve still returns its best area profile and its error estimate; the
         estimate moves gamma_eff(1)/dgamma = g1 by its error bar (:meth:`adhesion_at_one`),
@@ -466,7 +467,7 @@ class _Branch:
         corresponding interval, doubled for the fixed point's response. 0 when not flagged.
         """
 
-        if status != RTOL_NOT_MET:
+        if status not in (RTOL_NOT_MET, GRID_CAP):
             return 0.0
         g1, bar = self.adhesion_at_one()
         lo, hi = np.sqrt(max(g1 - bar, 0.0)), np.sqrt(max(g1 + bar, 0.0))

@@ -259,7 +259,7 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         * ``gap_density`` [1/m] (..., pressure, gap), ``mean_gap`` [m] and
           ``gap_weight_error`` [-] (..., pressure) -- with ``gaps``: the density of the
           interfacial gap outside the contact (the contact fraction, at u = 0, is ``area``),
-          its mean (u(p)) and |trapz(density, gap) + area - 1| on the ``gap`` axis; NaN where
+          its mean (u(p)) and abs(trapz(density, gap) + area - 1) on the ``gap`` axis; NaN where
           p <= 0 or the scene's gap distribution raised. A flagged distribution sets the
           scene's ``success`` False and says why in ``message``.
 
