@@ -283,7 +283,8 @@ def _ladder_estimate(a0, a1, a2, ok0):
     extrapolation assumes: the extrapolation with the observed one, a2 + d2/(r - 1), differs
     from R by |d2| |1/(r - 1) - 1/3|, which the estimate never falls below. Where the ladder
     is not asymptotic (differences of two signs, a ratio outside ``LADDER_RATIO``, or no
-    valid a0) it is |a2 - a1|: R may then be no better than the last correction (and where
+    valid a0) it is |a2 - a1|, and at least |a1 - a0| / 4 where a0 is valid: R may then be
+    no better than the last correction, which may itself have cancelled by chance (and where
     the two finest levels agree exactly, e.g. both separated, the coarsest one's difference
     says nothing about R).
     """
@@ -294,7 +295,12 @@ def _ladder_estimate(a0, a1, a2, ok0):
         order = np.abs(d2) * np.abs(1.0 / (ratio - 1.0) - 1.0 / 3.0)
     est = np.maximum(np.abs((4.0 * d2 - d1) / 3.0) / 3.0, np.where(np.isfinite(order), order, 0.0))
     asymptotic = ok0 & (d1 * d2 > 0) & (ratio >= LADDER_RATIO[0]) & (ratio <= LADDER_RATIO[1])
-    est = np.where(asymptotic, est, np.abs(d2))
+    # not asymptotic: the last difference, but where a valid coarsest level exists never
+    # below a quarter of the one before (a ladder that turns back can end on a difference
+    # that cancelled by chance: measured, the finest level 2.9x its last difference off)
+    rough = np.where(ok0 & np.isfinite(d1), np.maximum(np.abs(d2), 0.25 * np.abs(d1)),
+                     np.abs(d2))
+    est = np.where(asymptotic, est, rough)
     return np.where(np.isfinite(est), est, np.abs(d2))
 
 
@@ -681,8 +687,12 @@ class _ZetaLadder:
                        np.maximum(est, np.maximum(np.abs(a1 - a0), np.abs(a2 - a1))), est)
         inner = np.array([abs(self.sol[K[r]][r].outs[7][-1]) for r in n])
         probed = self.amplification > 0.0
-        inner = np.where(probed, INNER_PROBE_SAFETY * self.amplification * inner,
-                         np.where(self.late, CROSSING_INNER_MARGIN * inner, inner))
+        # a late sign change: the diffusions' own estimates fall short on its fast receding
+        # wall by a factor the probe at level 0 need not see (its coarse wall recedes
+        # otherwise), so its margin stays beside the measured amplification
+        factor = np.where(probed, INNER_PROBE_SAFETY * self.amplification, 1.0)
+        factor = np.where(self.late, np.maximum(factor, CROSSING_INNER_MARGIN), factor)
+        inner = factor * inner
         self.ladder_part = np.where(vanishing, np.minimum(est, a2), est)
         self.inner = inner
         est = np.where(vanishing, np.minimum(est + inner, a2), est + inner)

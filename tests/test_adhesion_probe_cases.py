@@ -118,19 +118,18 @@ def test_tension_results_agree_across_tolerances():
     assert abs(loose.area[0] - tight.area[0]) <= 3.96e-6 * tight.area[0]
 
 
-#: known misses that every zeta level carries alike, so that the ladder cannot see them;
-#: random probing (benchmarks/adhesion_probe.py) finds 4 in 2050 unflagged rows, up to 1.5
-#: rtol off: the fixed point amplifying the errors of its diffusion solves, and (the late
-#: onset) the grid solver's own estimate on a wall receding fast just before zeta1. Per
-#: scene: the parameters, the oracle's rtol factors and the known defect
-KNOWN_MISS_SCENES = {
+#: scenes found by random probing (benchmarks/adhesion_probe.py) 1.0-1.5 rtol off with status
+#: 0: the fixed point amplifying the errors of its diffusion solves alike on every zeta level,
+#: so that the ladder could not see it (now measured at level 0 and charged:
+#: ``_ZetaLadder._probe_inner``), and (the late onset) the grid solver's own estimate on a
+#: wall receding fast just before zeta1. Per scene: the parameters, the oracle's rtol factors
+#: and, for a miss still known, the reason of its strict xfail
+PROBE_MISS_SCENES = {
     "strong adhesion, compression": (dict(
         hurst=0.8017880918070945, decades=1.4646249671845748, q0=207392.2073337302,
         h_rms=1.5759564780661478e-07, e_star=108318607.20923069,
         work_of_adhesion=0.41865480617164014, rtol=0.0008736754705484193,
-        pressure=188425.48943503003), (1e-2, 1e-3),
-        "known: the amplified diffusion error is about 2.6x the diffusions' own estimate: 1.5 "
-        "rtol off with an estimate of 0.5 rtol; with the diffusions at rtol/16, 0.01 rtol off"),
+        pressure=188425.48943503003), (1e-2, 1e-3), None),
     "onset in the last cell at a large pressure": (dict(
         hurst=0.531161966809038, decades=1.698543846049879, q0=404993.66796160623,
         h_rms=2.3608289836876854e-07, e_star=3449903158.786992,
@@ -150,13 +149,19 @@ KNOWN_MISS_SCENES = {
 
 
 @pytest.mark.parametrize("name", [
-    pytest.param(name, marks=pytest.mark.xfail(strict=True, reason=reason))
-    for name, (_, _, reason) in sorted(KNOWN_MISS_SCENES.items())])
-def test_known_miss_within_rtol(name):
-    c, factors, _ = KNOWN_MISS_SCENES[name]
+    pytest.param(name, marks=() if reason is None
+                 else pytest.mark.xfail(strict=True, reason=reason))
+    for name, (_, _, reason) in sorted(PROBE_MISS_SCENES.items())])
+def test_probe_miss_within_rtol(name):
+    """The strong-adhesion scene was 1.5 rtol off with an estimate of 0.5 rtol (the amplified
+    diffusion error about 2.6x the diffusions' own estimate); with the amplification measured
+    and charged it is within rtol with status 0, its estimate at least half the error."""
+    c, factors, _ = PROBE_MISS_SCENES[name]
     res, ref = _solve_and_oracle(c, factors)
-    assert res.status[0] == 0
-    assert abs(res.area[0] - ref) <= c["rtol"] * ref
+    err = abs(res.area[0] - ref)
+    assert res.status[0] == 0, res.message
+    assert err <= c["rtol"] * ref
+    assert res.error_estimate[0] >= 0.5 * err
 
 
 @pytest.mark.parametrize("theory, hardness", [
