@@ -449,6 +449,30 @@ class _ZetaLadder:
         grids = [self.grid(r, k) for r in rows]
         outs, n_z, status, iterations, residual = self.solve_fn(grids, starts, rows,
                                                                self.inner_div[rows])
+        # a row that did not converge from a given start (at p_nom = 0 on a surface that is
+        # not sticky, a start extrapolated from two coarser levels can leave the iteration
+        # alternating between contact and separation): once more from the next coarser
+        # level's profile alone, else from full contact
+        again = np.flatnonzero((status == NOT_CONVERGED)
+                               & np.array([s is not None for s in starts], dtype=bool))
+        if again.size:
+            plain = []
+            for i in again:
+                r = rows[i]
+                c = k + 1 if k == 0 else k - 1
+                plain.append(np.interp(self.solved_v(c, r, grids[i]), self.solved_v(c, r),
+                                       self.sol[c][r].outs[1]) if self._ok(c, r) else None)
+            more = self.solve_fn([grids[i] for i in again], plain, rows[again],
+                                 self.inner_div[rows[again]])
+            width = outs[0].shape[1]
+            for i, j in enumerate(again):
+                for o, o2 in zip(outs, more[0]):
+                    o[j, :more[1][i]] = o2[i, :more[1][i]]
+                    o[j, more[1][i]:width] = np.nan
+                n_z[j] = more[1][i]
+                status[j] = more[2][i]
+                iterations[j] += more[3][i]
+                residual[j] = more[4][i]
         while len(self.sol) <= k:
             self.sol.append([None] * self.n_p)
         for i, r in enumerate(rows):
