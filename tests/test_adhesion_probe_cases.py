@@ -121,9 +121,20 @@ def test_tension_results_agree_across_tolerances():
 #: scenes found by random probing (benchmarks/adhesion_probe.py) 1.0-1.5 rtol off with status
 #: 0: the fixed point amplifying the errors of its diffusion solves alike on every zeta level,
 #: so that the ladder could not see it (now measured at level 0 and charged:
-#: ``_ZetaLadder._probe_inner``), and (the late onset) the grid solver's own estimate on a
-#: wall receding fast just before zeta1. Per scene: the parameters, the oracle's rtol factors
-#: and, for a miss still known, the reason of its strict xfail
+#: ``_ZetaLadder._probe_inner``), and (the late onsets) the diffusion error on a wall that
+#: recedes fast just before zeta1. Per scene: the parameters, the oracle's rtol factors and,
+#: for a miss still known, the reason of its strict xfail
+LATE_ONSET_REASON = (
+    "known: weak adhesion at a large pressure, gamma_eff changing sign in the last cells "
+    "before zeta1 (random probing, seeds 23 and 25): 1.39 and 1.45 rtol off with status 0, "
+    "estimates 0.53x and 0.36x the error. The diffusion error on the wall receding fast "
+    "after the onset is first order in the node spacing (the sub-grid flux through the wall "
+    "face), 4.7x the diffusions' own estimate; the probe of the fixed point's amplification "
+    "(level 0 solved 4x looser) underrates it, since a first-order error moves by "
+    "4^(1/4) - 1 = 0.41 of itself there, not 3x. Tried: a third probe 4x tighter (at level "
+    "0 or at the finest level) fixed both but put the estimates of two other late-onset "
+    "scenes 30-55x over their errors (one flagged within rtol); the sub-grid term in the "
+    "fixed point's inner estimates made them 16-30x over and adhesion 5-7x slower")
 PROBE_MISS_SCENES = {
     "strong adhesion, compression": (dict(
         hurst=0.8017880918070945, decades=1.4646249671845748, q0=207392.2073337302,
@@ -134,17 +145,12 @@ PROBE_MISS_SCENES = {
         hurst=0.531161966809038, decades=1.698543846049879, q0=404993.66796160623,
         h_rms=2.3608289836876854e-07, e_star=3449903158.786992,
         work_of_adhesion=0.0013618066270709342, rtol=0.0001937245614110028,
-        pressure=5558724.611461243), (1.0 / 30, 1e-2),
-        "known: weak adhesion at a large pressure (A = 0.004), the onset of sigma_a in the "
-        "last cell before zeta1 (a late sign change: diffusions at rtol/4, 2.5x their "
-        "estimate charged): 1.03 rtol off, estimate 0.41 rtol (with the diffusions at rtol/64, "
-        "0.004 rtol off); found by random probing (seed 25). Not amplification: cn alone on "
-        "the final wall was as far off, its estimate 6x under the error (the flux through the "
-        "wall face is first order in h where the wall recedes faster than the grid resolves). "
-        "On a prescribed wall the estimate now carries that sub-grid term and cn refines "
-        "(test_cn_kinks.py); with it in the fixed point's inner solves this scene came out "
-        "0.16 rtol off with status 0, but the two onset scenes above were 16-30x over their "
-        "errors and the tighter oracles flagged, so the fixed point's walls leave it out"),
+        pressure=5558724.611461243), (1.0 / 30, 1e-2), LATE_ONSET_REASON),
+    "late onset at a large pressure, A = 0.3": (dict(
+        hurst=0.8697038427174335, decades=1.3467292268026538, q0=142674.75358994355,
+        h_rms=2.521662456445143e-07, e_star=1747370750.4979184,
+        work_of_adhesion=0.0014104534269785438, rtol=0.0006373554515046465,
+        pressure=34641808.455012806), (1e-2, 1e-3), LATE_ONSET_REASON),
 }
 
 
@@ -153,9 +159,9 @@ PROBE_MISS_SCENES = {
                  else pytest.mark.xfail(strict=True, reason=reason))
     for name, (_, _, reason) in sorted(PROBE_MISS_SCENES.items())])
 def test_probe_miss_within_rtol(name):
-    """The strong-adhesion scene was 1.5 rtol off with an estimate of 0.5 rtol (the amplified
-    diffusion error about 2.6x the diffusions' own estimate); with the amplification measured
-    and charged it is within rtol with status 0, its estimate at least half the error."""
+    """Each scene was 1.4-1.5 rtol off with status 0 (estimates 0.36-0.53x the error). With
+    the amplification measured and charged, the strong-adhesion scene is within rtol with
+    status 0, its estimate at least half the error; the late onsets are still known misses."""
     c, factors, _ = PROBE_MISS_SCENES[name]
     res, ref = _solve_and_oracle(c, factors)
     err = abs(res.area[0] - ref)
