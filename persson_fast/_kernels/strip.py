@@ -85,6 +85,7 @@ N_WIDTH = 10.0          # coarse steps per profile width sqrt(2G) travelled by a
 LEVEL0_SCALE = 0.25     # resolution scale of level 0 of the explicit ladder
 N_CAP = 16384           # most intervals of any run (the coarse grid: N_CAP / 4)
 WORK_MAX = 2e8          # most node-steps of all the runs of one solve
+PLAN_STOP = 64.0        # the step count stops at this many times WORK_MAX's steps
 MAX_REFINE = 3          # a-posteriori refinements at most
 EXTRAPOLATED_ORDER = 3.0  # order assumed for the error of the extrapolated values
 ASYMPTOTIC_SLACK = 2.0  # successive ladder differences within this factor of 4: asymptotic
@@ -256,12 +257,15 @@ def _step_size(g, w, speed, rel, max_step, n_width):
 
 
 @njit_serial
-def _plan(G_k, sa_k, sy_k, speed_k, k_first, g_start, rel, max_step, n_width, gs, piece, rec):
+def _plan(G_k, sa_k, sy_k, speed_k, k_first, g_start, rel, max_step, n_width, gs, piece, rec,
+          dt_min=0.0, m_stop=-1):
     """Coarse step boundaries from g_start through every sample after it.
 
     Returns the number of steps; with non-empty ``gs`` also fills the boundaries ``gs``, the
     piece of each step ``piece`` and, for each sample k >= k_first, the index ``rec[k]`` of
-    its boundary. With empty ``gs`` it only counts.
+    its boundary. With empty ``gs`` it only counts, and stops counting past ``m_stop``
+    (>= 0) steps (walls that nearly meet ask for steps ~ w^2: without a stop the count
+    alone ran for hours). No step is shorter than ``dt_min`` (but at the samples).
     """
     fill = gs.shape[0] > 0
     m = 0
@@ -275,6 +279,10 @@ def _plan(G_k, sa_k, sy_k, speed_k, k_first, g_start, rel, max_step, n_width, gs
             while True:
                 w = _wall_at(G_k, sa_k, k, g) + _wall_at(G_k, sy_k, k, g)
                 dt = _step_size(g, w, speed_k[k], rel, max_step, n_width)
+                if dt < dt_min:
+                    dt = dt_min
+                if not fill and 0 <= m_stop < m:
+                    return m
                 if g + 1.5 * dt >= b:
                     if b - g > dt:
                         g = 0.5 * (g + b)
@@ -649,9 +657,12 @@ def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl
     empty_f = np.empty(0)
     empty_i = np.empty(0, dtype=np.int64)
     rec = np.zeros(n_k, dtype=np.int64)
+    per_step = 21.0 * (n_c + 1.0)
+    m_stop = int(PLAN_STOP * WORK_MAX / per_step)
     m = _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, empty_f, empty_i,
-              rec)
-    work = 21.0 * (n_c + 1.0) * m
+              rec, 0.0, m_stop)
+    work = per_step * m
+    dt_min = 0.0
     if work > WORK_MAX:
         # cut the step densities (not below one step per piece), flagged
         f = WORK_MAX / work
@@ -659,11 +670,18 @@ def solve_strip(G, sa, sy, sigma0, rtol, level, n_damp, out_el, out_load, out_pl
         max_step /= f
         n_width *= f
         m = _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, empty_f,
-                  empty_i, rec)
+                  empty_i, rec, 0.0, m_stop)
         status = st.GRID_CAP
+        if per_step * m > PLAN_STOP * WORK_MAX / 16.0:
+            # still far over (the walls nearly meet: steps ~ w^2): the steps no shorter than
+            # the work cap allows over the whole range
+            dt_min = (G_k[n_k - 1] - g_s) * per_step / WORK_MAX
+            m = _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, empty_f,
+                      empty_i, rec, dt_min, -1)
     gs = np.empty(m + 1)
     piece = np.empty(m, dtype=np.int64)
-    _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, gs, piece, rec)
+    _plan(G_k, sa_k, sy_k, speed_k, k_s, g_s, rel, max_step, n_width, gs, piece, rec, dt_min,
+          -1)
     counts[0] = n_c
     counts[1] = m
     # the ladder
