@@ -456,12 +456,8 @@ class _ZetaLadder:
         again = np.flatnonzero((status == NOT_CONVERGED)
                                & np.array([s is not None for s in starts], dtype=bool))
         if again.size:
-            plain = []
-            for i in again:
-                r = rows[i]
-                c = k + 1 if k == 0 else k - 1
-                plain.append(np.interp(self.solved_v(c, r, grids[i]), self.solved_v(c, r),
-                                       self.sol[c][r].outs[1]) if self._ok(c, r) else None)
+            c = k + 1 if k == 0 else k - 1
+            plain = [self._profile_on(c, rows[i], grids[i]) for i in again]
             more = self.solve_fn([grids[i] for i in again], plain, rows[again],
                                  self.inner_div[rows[again]])
             width = outs[0].shape[1]
@@ -481,6 +477,13 @@ class _ZetaLadder:
         self.iterations[rows] += iterations
         self.residual[rows] = np.maximum(self.residual[rows], residual)
         return status
+
+    def _profile_on(self, k, r, grid):
+        """Row r's level-k detachment stress interpolated onto ``grid`` (linear in the
+        solve's :func:`onset_coordinate`), or None where level k failed."""
+        if not self._ok(k, r):
+            return None
+        return np.interp(self.solved_v(k, r, grid), self.solved_v(k, r), self.sol[k][r].outs[1])
 
     def _ok(self, k, r):
         entry = self.sol[k][r] if k < len(self.sol) else None
@@ -599,8 +602,7 @@ class _ZetaLadder:
                     self._centre(r, 1, u)
             if graded:
                 self._solve_centred(1, np.array(graded), [
-                    np.interp(self.solved_v(1, r, self.grid(r, 1)), self.solved_v(1, r),
-                              self.sol[1][r].outs[1]) for r in graded])
+                    self._profile_on(1, r, self.grid(r, 1)) for r in graded])
         # (an ungraded row: its diffusions to rtol / CROSSING_INNER_DIV from here on; a graded
         # row tightens them only where its estimate asks for it, see refine_until)
         late = [r for r in late if r not in graded]
@@ -608,14 +610,7 @@ class _ZetaLadder:
         if late:
             self._solve_level(1, np.array(late), [self.sol[1][r].outs[1].copy() for r in late])
         self._predict_centre(0, rows)
-        starts0 = []
-        for r in rows:
-            if self._ok(1, r):
-                starts0.append(np.interp(self.solved_v(1, r, self.grid(r, 0)),
-                                         self.solved_v(1, r), self.sol[1][r].outs[1]))
-            else:
-                starts0.append(None)
-        self._solve_centred(0, rows, starts0)
+        self._solve_centred(0, rows, [self._profile_on(1, r, self.grid(r, 0)) for r in rows])
         self._predict_centre(2, rows)
         self._solve_centred(2, rows, self._start_from(1, rows))
         self._probe_inner(rows)
