@@ -9,7 +9,7 @@ if TYPE_CHECKING:  # names of the type hints only
     from numpy.typing import ArrayLike
     
     from .scene import Scene
-    from .surface_base import Surface
+    from .surfaces.base import Surface
 
 import functools
 import time
@@ -17,19 +17,20 @@ from dataclasses import replace
 
 import numpy as np
 
-from . import analytic
+from .analytic.images import _images_area_at, images_area
+from .analytic.linear import linear_boundary_area, linear_boundary_load
 from ._kernels.status import GRID_CAP, LOST_CONTACT, RTOL_NOT_MET
 from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
                           check_nondecreasing, check_nonnegative, wall_rows)
 from ._jit import compiling_beside
-from .adhesion import (ADHESIVE_JOBS, solve_adhesive_contact, warm_adhesion,
+from .adhesion.fixed_point import (ADHESIVE_JOBS, solve_adhesive_contact, warm_adhesion,
                        warm_adhesive_yield, yield_wall_on)
 from .methods import check_method, check_serves, choose_auto
 from .results import (ContactResult, Deferred, DiffusionResult, per_contact_area,
                       summarize_status)
-from .plasticity import YIELD_METHODS, check_below_hardness, check_hardness
-from .yield_api import solve_yield_contact, solve_yield_diffusion
-from .separation import ADHESION_REFUSED, contact_fields, warm_separation
+from .plasticity.hardness import YIELD_METHODS, check_below_hardness, check_hardness
+from .plasticity.yield_wall import solve_yield_contact, solve_yield_diffusion
+from .separation.elastic import ADHESION_REFUSED, contact_fields, warm_separation
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep, warm_sweeps
 from .theories import check_theory, check_theory_scene, solve_theory_contact
@@ -162,7 +163,7 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
         elastic area between the walls). Forms as ``sigma_a``: a scalar, (n_t,) or (n_p, n_t)
         samples (continuous: no jumps), or a vectorised callable G -> sigma_y. A constant
         sigma_y with sigma_a = 0 is the exact series (method "analytic"; "auto" takes it);
-        every other pair of walls is solved by "strip" (see ``persson_fast.strip``;
+        every other pair of walls is solved by "strip" (see ``persson_fast.plasticity.strip``;
         "auto" takes it), with rtol and ``error_estimate`` referring to the real contact
         area area + plastic_area. The walls must keep -sigma_a < sigma_y and start with
         -sigma_a < pressure < sigma_y. None (default): no yield wall. [Pa]
@@ -344,7 +345,7 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
 
 def _images_profile(p, G):
     """A(zeta)/A0 of the closed form without adhesion, (n_p, n_z)."""
-    area_z = analytic.images_area(p[:, None], G[None, :])
+    area_z = images_area(p[:, None], G[None, :])
     return np.broadcast_to(area_z, (p.size, G.size)).astype(float)
 
 
@@ -369,11 +370,11 @@ def _analytic_linear(G, rows, p):
             load[k] = 0.0
             continue
         if a0 == 0 and b == 0:
-            area[k] = analytic.images_area(p[k], G)
+            area[k] = images_area(p[k], G)
             load[k] = np.where(area[k] > 0, p[k], 0.0)
         else:
-            area[k] = analytic.linear_boundary_area(p[k], G, a0, b)
-            load[k] = analytic.linear_boundary_load(p[k], G, a0, b)
+            area[k] = linear_boundary_area(p[k], G, a0, b)
+            load[k] = linear_boundary_load(p[k], G, a0, b)
     return {
         "area": area, "load": load, "detached_area": 1.0 - area,
         "detached_load": load - p[:, None], "error_estimate": np.zeros((n_p, n_t)),
@@ -400,13 +401,13 @@ def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol,
     yield wall is checked at the looser bound of LOST_CONTACT_RTOL.
 
     pull_off's own warning (estimate above its rtol) is not issued here: the private
-    :func:`persson_fast.pulloff._pull_off` returns it instead, and its error estimate
+    :func:`persson_fast.adhesion.pulloff._pull_off` returns it instead, and its error estimate
     already widens the flagged band. No warning filter is touched, so this is safe on the
     worker threads of a scan (``warnings.catch_warnings`` is not thread-safe before
     Python 3.14 and could leave an 'ignore' filter behind for good).
     """
 
-    from .pulloff import _pull_off
+    from .adhesion.pulloff import _pull_off
 
     sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
     if not np.any(sep):
@@ -499,7 +500,7 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     e_star : float
         Effective modulus E* = E / (1 - nu^2) > 0, in Pa (1 GPa is 1e9); required unless a
         Scene is given. Below 1e5 Pa
-        (``persson_fast.surfaces.E_STAR_WARN_BELOW``) a UserWarning says so; a value for
+        (``persson_fast.surfaces.models.E_STAR_WARN_BELOW``) a UserWarning says so; a value for
         which G(q1) (or, with adhesion, the detachment stress or U_el/Delta gamma)
         overflows float64 raises a ValueError. [Pa]
     work_of_adhesion : float
@@ -559,7 +560,7 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
         ``plastic_area_zeta`` its profile). A constant one is the exact two-wall series
         (method "auto" or "analytic", error 0); a scale-dependent one (or method="strip")
         the two-wall solver on the wall sigma_Y(zeta(G)), error-controlled to rtol in the
-        real area (``persson_fast.plasticity``, ``persson_fast.strip``). With
+        real area (``persson_fast.plasticity``, ``persson_fast.plasticity.strip``). With
         adhesion, or with theory "yp08"/"wm17", the adhesive fixed point runs the two-wall
         solver (method "auto" or "strip"), and separated tensions are checked against
         ``pull_off`` with the same yield wall. Nominal pressures below sigma_Y(1). None
@@ -644,7 +645,7 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     if use == "analytic":
         # the area at zeta1 now, its profile in zeta (n_p x n_z erf calls, 40x the work of the
         # answer) only when read: area_zeta[:, -1] is bitwise this area
-        area = analytic._images_area_at(p, G[-1])
+        area = _images_area_at(p, G[-1])
         area_z = Deferred(_images_profile, p, G)
         contact = area > 0
         # the load in contact is the pressure where A > 0 (usually at every pressure: a copy)

@@ -1,4 +1,4 @@
-"""The ``persson-fast`` command, run in-process through ``persson_fast.cli.main``.
+"""The ``persson-fast`` command, run in-process through ``persson_fast.cli.main.main``.
 
 Covers: figure2 and its CSV columns, contact from flags and from a TOML file, the error path
 (``error: ...`` and exit code 2), outputs replaced only when complete and as a set (issue 11,
@@ -586,7 +586,7 @@ def test_cli_theory_names_match_the_package():
 
 
 def test_cli_contact_theory(tmp_path, capsys):
-    from persson_fast import cli
+    from persson_fast.cli.main import main as cli
     out = tmp_path / "t.csv"
     args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
             "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e5", "1e6",
@@ -605,7 +605,7 @@ def test_cli_contact_theory(tmp_path, capsys):
 
 def test_cli_theory_with_adhesion(capsys):
     """wm17 serves adhesion; xu24 is refused with the reason."""
-    from persson_fast import cli
+    from persson_fast.cli.main import main as cli
     args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
             "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e6", "--theory", "wm17",
             "--work-of-adhesion", "0.05", "--rtol", "1e-3"]
@@ -617,7 +617,7 @@ def test_cli_theory_with_adhesion(capsys):
 
 
 def test_cli_theory_from_config(tmp_path, capsys):
-    from persson_fast import cli
+    from persson_fast.cli.main import main as cli
     cfg = tmp_path / "c.toml"
     cfg.write_text('e_star = 1e9\npressures = [1e6]\ntheory = "xu24"\n'
                    '[surface]\nmodel = "self-affine"\nhurst = 0.8\nq0 = 1e4\nq1 = 1e9\n'

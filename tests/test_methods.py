@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast._reference import cn_baseline
+from persson_fast._reference.diffusion import cn_baseline
 from persson_fast.methods import AUTO_POLICY, METHODS, check_serves, choose_auto
 
 from tolerances import ATOL

@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import adhesion as adhesion_module
+from persson_fast.adhesion.fixed_point import fixed_point as adhesion_module
 from persson_fast import sweep
 
 #: every accepted value of ``parallel`` but the serial one

@@ -1,6 +1,6 @@
 """Measured surfaces: height maps, line scans and spectrum files to Persson's C(q).
 
-The numpy path (persson_fast.topography) needs nothing optional; the tests that use
+The numpy path (persson_fast.surfaces.topography) needs nothing optional; the tests that use
 SurfaceTopography skip cleanly when it is not installed.
 
 Expected errors, and why (the tolerances below):
@@ -28,7 +28,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import topography as topo
+from persson_fast.surfaces.models import topography as topo
 
 #: rounding of an FFT and a few sums over up to 1e6 modes, relative
 ROUNDING = 1e-10

@@ -1,0 +1,1 @@
+"""Surfaces: the roughness power spectra C(q)."""
