@@ -349,6 +349,8 @@ def main(argv=None):
     if args.compare:
         with open(args.compare) as f:
             old = json.load(f)
+        if args.only:                     # compare the cases that ran
+            old = {k: v for k, v in old.items() if args.only in k}
         diff = [k for k in sorted(set(old) | set(result)) if old.get(k) != result.get(k)]
         for k in diff:
             print(f"DIFFERS {k}: {old.get(k, '-')[:40]} -> {result.get(k, '-')[:40]}")

@@ -21,7 +21,8 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import cli, cli_output
+from persson_fast.cli import main as cli
+from persson_fast.cli import output as cli_output
 
 #: a self-affine scene that is sticky but not in full contact: pull-off about 0.1 MPa
 SCENE = ["--surface", "self-affine", "--hurst", "0.8", "--q0", "1e5", "--q1", "1e9",
@@ -581,7 +582,8 @@ def test_contact_psd_and_surface_flags_conflict(tmp_path, capsys):
 # --- area theories (--theory, --theory-gamma) ---------------------------------------------
 
 def test_cli_theory_names_match_the_package():
-    from persson_fast import cli, theories
+    from persson_fast import theories
+    from persson_fast.cli import main as cli
     assert cli.THEORY_NAMES == theories.THEORIES
 
 
@@ -642,7 +644,7 @@ def test_console_script_exits_with_mains_code_and_frozen_objects():
     frozen, threshold = gc.get_freeze_count(), gc.get_threshold()
     assert cli.main(["--points", "1", "--out", "unused"]) == 2
     assert gc.get_freeze_count() == frozen and gc.get_threshold() == threshold
-    code = ("import atexit, gc, sys; from persson_fast import cli; "
+    code = ("import atexit, gc, sys; from persson_fast.cli import main as cli; "
             "atexit.register(lambda: print('frozen', gc.get_freeze_count() > 0, "
             "gc.get_threshold()[0])); "
             "sys.argv = ['persson-fast', '--points', '1']; cli.run()")

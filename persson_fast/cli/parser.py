@@ -12,6 +12,7 @@ import argparse
 import re
 
 from ..methods import METHODS
+from ..plan import refusal_reasons
 from ..surfaces.models import SEED_POISSON as SEED_POISSON_DEFAULT
 from ..surfaces.models import BAND, SURFACE_MODELS
 
@@ -107,9 +108,9 @@ def build_parser() -> argparse.ArgumentParser:
         description="Relative real contact area of a rough surface: a model (--surface), a "
                     "measured height map (--topography) or a spectrum file (--psd), with "
                     "adhesion, a yield wall (--hardness) and the corrected area theories "
-                    "(--theory) as options, alone or together (xu24 takes neither adhesion "
-                    "nor a hardness). A TOML file (--config) may give the same settings; "
-                    "flags override it.",
+                    "(--theory) as options, alone or together. Refused: "
+                    + "; ".join(refusal_reasons()) + ". A TOML file (--config) may give "
+                    "the same settings; flags override it.",
     )
     ct.add_argument("--config", metavar="FILE.toml",
                     help="TOML file: a [surface] table with model = "
