@@ -23,8 +23,8 @@ from ._kernels.status import GRID_CAP, RTOL_NOT_MET
 from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
                           check_nondecreasing, check_nonnegative, wall_rows)
 from ._jit import compiling_beside
-from .adhesion.fixed_point import (ADHESIVE_JOBS, solve_adhesive_contact, warm_adhesion,
-                       warm_adhesive_yield, yield_wall_on)
+from .adhesion.runner import ADHESIVE_JOBS, warm_adhesion, warm_adhesive_yield
+from .adhesion.fixed_point import solve_adhesive_contact, yield_wall_on
 from .methods import check_method, check_serves, choose_auto
 from .results import (ContactResult, Deferred, DiffusionResult, per_contact_area,
                       summarize_status)

@@ -124,7 +124,7 @@ from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_sep
 from ._kernels.similarity import solve_one
 from ._kernels.strip import N_DAMP as STRIP_N_DAMP
 from ._kernels.strip import solve_strip
-from .adhesion.fixed_point import _scene_arrays, adhesion_zeta, refine_zeta
+from .adhesion.zeta_grid import _scene_arrays, adhesion_zeta, refine_zeta
 from .separation.contact_law import ContactLaw, contact_law
 from .scene import DETACHMENT_PREFACTOR
 

@@ -588,7 +588,7 @@ def test_cli_theory_names_match_the_package():
 
 
 def test_cli_contact_theory(tmp_path, capsys):
-    from persson_fast.cli.main import main as cli
+    from persson_fast.cli import main as cli
     out = tmp_path / "t.csv"
     args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
             "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e5", "1e6",
@@ -607,7 +607,7 @@ def test_cli_contact_theory(tmp_path, capsys):
 
 def test_cli_theory_with_adhesion(capsys):
     """wm17 serves adhesion; xu24 is refused with the reason."""
-    from persson_fast.cli.main import main as cli
+    from persson_fast.cli import main as cli
     args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
             "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e6", "--theory", "wm17",
             "--work-of-adhesion", "0.05", "--rtol", "1e-3"]
@@ -619,7 +619,7 @@ def test_cli_theory_with_adhesion(capsys):
 
 
 def test_cli_theory_from_config(tmp_path, capsys):
-    from persson_fast.cli.main import main as cli
+    from persson_fast.cli import main as cli
     cfg = tmp_path / "c.toml"
     cfg.write_text('e_star = 1e9\npressures = [1e6]\ntheory = "xu24"\n'
                    '[surface]\nmodel = "self-affine"\nhurst = 0.8\nq0 = 1e4\nq1 = 1e9\n'

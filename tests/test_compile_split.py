@@ -27,7 +27,7 @@ import pytest
 
 import persson_fast as pf
 from persson_fast import _jit
-from persson_fast.adhesion.fixed_point import fixed_point as adhesion_module
+from persson_fast.adhesion import runner as adhesion_module
 from persson_fast._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP,
                                             DEFAULT_OMEGA, solve_adhesive_one)
 from persson_fast._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol

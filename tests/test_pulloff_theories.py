@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast.adhesion.fixed_point import branch as pb
-from persson_fast.adhesion.fixed_point import ADHESION_DEFAULTS, THEORY_CODES, _controls
+from persson_fast.adhesion import branch as pb
+from persson_fast.adhesion.runner import ADHESION_DEFAULTS, THEORY_CODES, _controls
 from persson_fast.methods import choose_auto, variant_of
 from persson_fast.adhesion.pulloff import PULL_OFF_OMEGA, _near_one_min
 from persson_fast.theories import DEFAULT_GAMMA, correction_factor

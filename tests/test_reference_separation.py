@@ -14,7 +14,7 @@ import pytest
 from scipy.integrate import IntegrationWarning
 
 import persson_fast as pf
-from persson_fast._reference.diffusion import separation as ref
+from persson_fast._reference import separation as ref
 from persson_fast.surfaces.models import seed_e_star, seed_scene
 
 SCENES = {

@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from scipy import integrate, special
 
 import persson_fast as pf
-from persson_fast.separation.elastic import elastic as sep
+from persson_fast.separation import elastic as sep
 from persson_fast._kernels import separation as ksep
 from persson_fast.surfaces.models import seed_e_star, seed_scene
 
@@ -356,7 +356,7 @@ def test_bad_scene_arguments():
 
 # --- against the slow reference twin (scipy quad of the double integral) ---------------------
 def _reference():
-    from persson_fast._reference.diffusion import separation as ref
+    from persson_fast._reference import separation as ref
     return ref
 
 

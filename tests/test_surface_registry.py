@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast.cli.main import main as cli
+from persson_fast.cli import main as cli
 from persson_fast.surfaces.models import (SURFACE_MODELS, Parameter, SurfaceModel, band_parameters,
                                    register_surface_model)
 

@@ -277,7 +277,7 @@ def test_strip_refusals():
 
 def test_scene_scan_and_cli_take_a_scale_dependent_hardness(tmp_path, capsys):
     pytest.importorskip("xarray")
-    from persson_fast.cli.main import main as cli
+    from persson_fast.cli import main as cli
 
     h = pf.hardness_power_law(3e8, 0.3)
     scene = pf.Scene(SEED, e_star=E_SEED, hardness=h)

@@ -18,7 +18,7 @@ import numpy as np
 from .._kernels.adhesion import corrected_times, yield_detachment_update
 from .._kernels.status import (BAD_INPUT, FAR_LEAK, GRID_CAP, NEGATIVE_DENSITY, NONFINITE,
                               NOT_CONVERGED, RTOL_NOT_MET, START_UNRESOLVED, WALL_JUMP)
-from .fixed_point import _run
+from .runner import _run
 from .._kernels.similarity import SMOOTH_WALL
 from ..results import summarize_status
 from .zeta_grid import _scene_arrays
@@ -199,7 +199,7 @@ class _Branch:
         self.area_error = np.zeros(n)
 
     def sy_rows(self, n_rows):
-        """The yield wall (scaled) as rows for :func:`persson_fast.adhesion.fixed_point._run`, or None."""
+        """The yield wall (scaled) as rows for :func:`persson_fast.adhesion.runner._run`, or None."""
         if not self.has_yield:
             return None
         return np.tile(self.sy, (n_rows, 1))

@@ -29,9 +29,9 @@ from dataclasses import replace
 import numpy as np
 
 from .._kernels.status import GRID_CAP, RTOL_NOT_MET, STATUS_MESSAGES, WALL_JUMP
-from .fixed_point import ADHESION_DEFAULTS, THEORY_CODES, _controls, solve_adhesive_contact
+from .fixed_point import solve_adhesive_contact
+from .runner import ADHESION_DEFAULTS, THEORY_CODES, _controls
 from ..methods import choose_auto, variant_of
-from ..results import summarize_status
 from ..scene import DETACHMENT_PREFACTOR
 from .zeta_grid import NEAR_ONE_MIN, adhesion_zeta, refine_zeta
 from .branch import (PULL_OFF_BLOWUP, PULL_OFF_COLLAPSE, PULL_OFF_EARLY,

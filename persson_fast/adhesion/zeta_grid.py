@@ -269,7 +269,7 @@ class Onset:
 
     def centred(self, z_star: float) -> "Onset":
         """The same interval and cells, graded around another sign change ``z_star`` inside
-        it (its own level's, see :class:`persson_fast.adhesion.fixed_point._ZetaLadder`)."""
+        it (its own level's, see :class:`persson_fast.adhesion.ladder._ZetaLadder`)."""
         z = min(max(float(z_star), self.z_a), self.z_b)
         return Onset(z, self.z_a, self.z_b, self.m_below, self.m_above)
 

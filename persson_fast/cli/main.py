@@ -111,7 +111,7 @@ _PLOT_EXTRA_HINT = ("matplotlib is not installed; install the 'plot' extra: "
 
 def _cmd_figure2(args) -> int:
     import persson_fast as pf
-    from persson_fast.adhesion.fixed_point import warm_adhesion
+    from persson_fast.adhesion.runner import warm_adhesion
 
     nu = float(args.poisson)
     if not (math.isfinite(nu) and -1.0 < nu <= 0.5):

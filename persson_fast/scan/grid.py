@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from .._validation import as_float_array, check_finite, check_nonnegative, check_positive
-from ..adhesion.fixed_point import adhesion_zeta
+from ..adhesion.zeta_grid import adhesion_zeta
 from ..scene import DETACHMENT_PREFACTOR, default_zeta
 from ..theories import THEORIES, check_theory
 from ..plasticity.hardness import check_hardness

@@ -242,7 +242,7 @@ class TabulatedPSD(Surface):
         converted to m; the spectrum is this package's own (:meth:`from_heights`), equal to
         SurfaceTopography's ``power_spectrum_from_area`` divided by (2π)² mode by mode.
         """
-        from .topography import spectrum_from_topography
+        from .files import spectrum_from_topography
 
         q, c, lo, hi, info = spectrum_from_topography(
             topography, table=TabulatedPSD, q0=q0, q1=q1,
@@ -274,7 +274,7 @@ class TabulatedPSD(Surface):
         -------
         TabulatedPSD
         """
-        from .topography import read_spectrum
+        from .files import read_spectrum
 
         q, c = read_spectrum(path, q_unit=q_unit, C_unit=C_unit)
         out = cls(q, c, q0=q0, q1=q1)
@@ -379,8 +379,8 @@ _MEASURED_TEXT = (
 def _surface_from_topography_file(file, q0=None, q1=None, hurst=None, bins_per_decade=10,
                                   unit=None, physical_sizes=None) -> TabulatedPSD:
     """The 'topography' model: :meth:`TabulatedPSD.from_topography` of a file read with
-    :func:`persson_fast.surfaces.topography.read_topography`."""
-    from .topography import read_topography
+    :func:`persson_fast.surfaces.files.read_topography`."""
+    from .files import read_topography
 
     topography = read_topography(file, unit=unit,
                                  physical_sizes=tuple(physical_sizes) if physical_sizes else None)
