@@ -78,3 +78,8 @@ __all__ = [
     "gap_distribution",
     "__version__",
 ]
+
+from . import _compat
+
+_compat.install()      # old module paths of pickles from 0.1.x
+del _compat
