@@ -27,10 +27,10 @@ import numpy as np
 
 from .methods import check_method
 from .results import summarize_status
-from .scene import _check_scene_args, unpack_scene
+from .scene import DETACHMENT_PREFACTOR, _check_scene_args, unpack_scene
 from .theories import check_theory, check_theory_scene
 
-__all__ = ["Plan", "ROUTES", "REFUSALS", "plan_contact", "refusal_reasons", "refusals_text",
+__all__ = ["Plan", "ROUTES", "REFUSALS", "plan_contact", "plan_scene", "check_composition", "refusal_reasons", "refusals_text",
            "finish_contact"]
 
 
@@ -155,27 +155,46 @@ def plan_contact(where: str, surface, given: dict, *, method: str, theory: str,
         For a bad argument, or a combination in :data:`REFUSALS` (or a theory that cannot
         carry the scene's walls).
     """
-    from .plasticity.hardness import check_hardness
-
     surface, kw = unpack_scene(surface, given, where)
     method = check_method(method)
     if check_extra is not None:
         check_extra()
-    e, dg, beta = _check_scene_args(surface, kw["e_star"], kw["work_of_adhesion"],
-                                    kw["detachment_prefactor"], kw["energy_correction"])
-    theory, theory_gamma = check_theory(theory, theory_gamma)
-    hardness = kw.get("hardness")
-    if theory != "persson01":
-        check_theory_scene(theory, float(dg), hardness)
-    if hardness is not None:
-        hardness = check_hardness(hardness, scale_dependent=True)
-    plan = Plan(surface=surface, e_star=e, work_of_adhesion=dg,
-                detachment_prefactor=float(beta), energy_correction=kw["energy_correction"],
-                theory=theory, theory_gamma=theory_gamma, hardness=hardness, method=method)
+    plan = plan_scene(surface, kw, theory=theory, theory_gamma=theory_gamma, method=method)
     for refusal in REFUSALS:
         if refusal.applies(plan):
             raise ValueError(refusal.message(plan))
     return plan
+
+
+def plan_scene(surface, kw: dict, *, theory: str = "persson01", theory_gamma=None,
+               method: str = "auto") -> Plan:
+    """The :class:`Plan` of an unpacked scene (``kw``: e_star, work_of_adhesion,
+    energy_correction, detachment_prefactor and optionally hardness, as given): the scene's
+    values checked, the theory checked against the walls it must carry
+    (:func:`check_composition`). Every entry point reads its scene through here:
+    :func:`plan_contact` (solve_contact), pull_off, solve_separation, gap_distribution and
+    the contact law (which refuse every route but "elastic")."""
+    from .plasticity.hardness import check_hardness
+
+    e, dg, beta = _check_scene_args(surface, kw["e_star"], kw.get("work_of_adhesion", 0.0),
+                                    kw.get("detachment_prefactor", DETACHMENT_PREFACTOR),
+                                    kw.get("energy_correction"))
+    theory, theory_gamma = check_theory(theory, theory_gamma)
+    hardness = kw.get("hardness")
+    check_composition(theory, float(dg), hardness)
+    if hardness is not None:
+        hardness = check_hardness(hardness, scale_dependent=True)
+    return Plan(surface=surface, e_star=e, work_of_adhesion=dg,
+                detachment_prefactor=float(beta), energy_correction=kw.get("energy_correction"),
+                theory=theory, theory_gamma=theory_gamma, hardness=hardness, method=method)
+
+
+def check_composition(theory: str, work_of_adhesion: float, hardness=None) -> None:
+    """Refuse a time law that cannot carry the scene's walls (xu24 with adhesion or a yield
+    wall): the first row of the refused combinations, shared by every entry point and by
+    each scene of a scan."""
+    if theory != "persson01":
+        check_theory_scene(theory, float(work_of_adhesion), hardness)
 
 
 def refusal_reasons() -> list[str]:

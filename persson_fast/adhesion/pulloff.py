@@ -367,17 +367,18 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     warning's text or None. Thread-safe (no warning filters touched), for callers that
     record ``info["converged"]`` themselves (:func:`persson_fast.api._flag_lost_contact`).
     """
-    from ..plasticity.hardness import check_hardness
-    from ..scene import _check_rtol, _check_scene_args, _check_zeta
-    from ..theories import check_theory, check_theory_scene
+    from ..plan import plan_scene
+    from ..scene import _check_rtol, _check_zeta
 
     t_start = time.perf_counter()
     rtol = _check_rtol(rtol)
-    e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
-                                    energy_correction)
-    theory, theory_gamma = check_theory(theory, theory_gamma)
-    hardness = check_hardness(hardness, scale_dependent=True)
-    check_theory_scene(theory, float(dg), hardness)
+    plan = plan_scene(surface, {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
+                                "energy_correction": energy_correction,
+                                "detachment_prefactor": detachment_prefactor,
+                                "hardness": hardness},
+                      theory=theory, theory_gamma=theory_gamma)
+    e, dg, beta = plan.e_star, plan.work_of_adhesion, plan.detachment_prefactor
+    theory, theory_gamma, hardness = plan.theory, plan.theory_gamma, plan.hardness
     info = {"solves": 0, "iterations": 0, "unconverged": 0, "error_estimate": 0.0,
             "error_parts": {}, "converged": True, "fold": False, "y0": 0.0, "grids": [],
             "extrapolated": [], "branch": {}, "bracket": (0.0, 0.0), "time": 0.0,

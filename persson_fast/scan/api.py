@@ -80,7 +80,7 @@ import numpy as np
 
 from .._validation import optional_import
 from ..scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, unpack_scene
-from ..theories import check_theory_scene
+from ..plan import check_composition
 from ..methods import METHODS
 from .grid import (PARAMETER_UNITS, SOLVE_PARAMETERS, ZETA1_RTOL, _check_positive_int,
                         _check_pressure, _check_progress, _check_theories, _check_zeta, _Grid,
@@ -344,7 +344,7 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
     for k in range(len(corrected)):
         if corrected[k] and (adhesive[k] or yielding[k]):
             kw = grid.scenes[k][2]
-            check_theory_scene(kw["theory"], kw["work_of_adhesion"], kw.get("hardness"))
+            check_composition(kw["theory"], kw["work_of_adhesion"], kw.get("hardness"))
     if any(yielding):
         i = yielding.index(True)
         if separation:

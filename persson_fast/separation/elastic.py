@@ -76,7 +76,7 @@ from .._kernels.separation import (J_END, J_SPLIT, build_kfun_table,
                                   chebyshev, separation_sweep, separation_sweep_prange)
 from .._kernels.status import BELOW_RESOLVED, OK, STATUS_MESSAGES
 from .._validation import as_float_array, check_finite
-from ..scene import DETACHMENT_PREFACTOR, _check_rtol, _check_scene_args, unpack_scene
+from ..scene import _check_rtol, unpack_scene
 from ..surfaces.models import SelfAffine
 from ..sweep import run_rows
 
@@ -333,14 +333,15 @@ def _gamma(energy_correction) -> float:
 
 def _scene(surface, e_star, energy_correction, where: str):
     """(surface, e_star, gamma_S) of a scene without adhesion; adhesion is refused."""
+    from ..plan import plan_scene
+
     surface, kw = unpack_scene(surface, {"e_star": e_star, "energy_correction": energy_correction},
                                where)
-    dg = kw.get("work_of_adhesion", 0.0)
-    e, dg, _ = _check_scene_args(surface, kw["e_star"], dg, DETACHMENT_PREFACTOR,
-                                 kw["energy_correction"])
-    if dg > 0:
-        raise ValueError(ADHESION_REFUSED.format(where=where, dg=dg))
-    return surface, e, _gamma(kw["energy_correction"])
+    plan = plan_scene(surface, kw)
+    if plan.route != "elastic":          # a Scene's adhesion (hardness and theories are
+        raise ValueError(ADHESION_REFUSED.format(where=where,     # refused when unpacked)
+                                                 dg=plan.work_of_adhesion))
+    return surface, plan.e_star, _gamma(plan.energy_correction)
 
 
 #: the message of every entry point asked for the separation of an adhesive scene
