@@ -454,17 +454,26 @@ class _Joined:
     reads, joined along the pressures."""
 
     ROWS = ("pressure", "area", "mean_contact_pressure", "mean_contact_stress", "status",
-            "sticky", "iterations")
+            "sticky", "iterations", "elastic_area", "plastic_area")
 
     def __init__(self, parts):
         from ..results import summarize_status
 
         first = parts[0]
+        # a field a scene does not have (sticky and iterations without adhesion, the elastic
+        # and plastic areas without a yield wall) is None in every block, and None joined
         for name in self.ROWS:
-            setattr(self, name, np.concatenate([getattr(r, name) for r in parts]))
-        for name in ("elastic_area", "plastic_area"):
-            if getattr(first, name, None) is not None:
-                setattr(self, name, np.concatenate([getattr(r, name) for r in parts]))
+            values = [getattr(r, name, None) for r in parts]
+            missing = [v is None for v in values]
+            if all(missing):
+                setattr(self, name, None)
+            elif any(missing):
+                raise RuntimeError(
+                    f"the blocks of pressures disagree on whether the result has {name!r} "
+                    f"(None in block(s) {[i for i, m in enumerate(missing) if m]}): a bug, "
+                    f"please report the scene")
+            else:
+                setattr(self, name, np.concatenate([np.atleast_1d(v) for v in values]))
         self.method, self.theory, self.theory_gamma = first.method, first.theory, first.theory_gamma
         self.success, self.message = summarize_status(self.status)
         offset, notes = 0, []
