@@ -8,6 +8,15 @@ it imports nothing of weight itself, and it turns a Ctrl-C at any moment -- whil
 package is imported, while the command runs, while it exits -- into the one answer
 :func:`persson_fast.cli.main.main` gives once it runs: ``interrupted`` on stderr and exit code
 130. ``import persson_fast`` and ``python -m persson_fast.cli`` are not affected.
+
+What no code of the package can answer is a Ctrl-C before this module runs: while Python
+starts (its ``site`` module and the ``.pth`` files of the environment, which in an editable
+install import setuptools' path finder) and while the console script finds this module.
+Python then prints its own traceback ("Fatal Python error: init_import_site", exit code 1;
+or a KeyboardInterrupt at the script's import line, killed by SIGINT), or, earlier still,
+is killed by SIGINT without a word. Measured in an editable install on a 2-core machine
+(a SIGINT every 3 ms from the start): up to about 0.02 s killed silently, 0.02-0.08 s
+Python's traceback in ``site``, then "interrupted" and 130.
 """
 import sys
 

@@ -83,13 +83,17 @@ def _refuse_unavailable_pull_off(settings: dict) -> None:
             "would be the elastic scene's number; drop --pull-off or --hardness")
 
 
+#: the spellings of the pressures' key in a TOML file (as --pressure and --pressures)
+PRESSURE_KEYS = ("pressures", "pressure")
+
+
 def _resolve_contact(args) -> dict:
     """Merge the TOML file (if any) and the flags (which win) into one settings dict."""
     cfg = _load_toml(args.config) if args.config else {}
-    known_top = {"surface", "e_star", "pressures", "pressure_range", "method", "rtol", "csv",
+    known_top = {"surface", "e_star", *PRESSURE_KEYS, "pressure_range", "method", "rtol", "csv",
                  "work_of_adhesion", "energy_correction", "detachment_prefactor", "pull_off",
                  "theory", "theory_gamma", "separation", "hardness", "hardness_exponent",
-                 "gaps"}
+                 "gaps", "strict"}
     unknown = sorted(set(cfg) - known_top)
     if unknown:
         raise CommandError(f"unknown key(s) in --config: {', '.join(unknown)}; "
@@ -151,12 +155,18 @@ def _resolve_contact(args) -> dict:
         pressure = np.asarray(args.pressure, dtype=float)
     elif args.pressure_range is not None:
         pressure = _pressure_range(*args.pressure_range)
-    elif "pressures" in cfg and "pressure_range" in cfg:
-        raise CommandError("--config gives both 'pressures' and 'pressure_range'; keep one")
-    elif "pressures" in cfg:
-        raw = cfg["pressures"]
+    elif len([k for k in (*PRESSURE_KEYS, "pressure_range") if k in cfg]) > 1:
+        given = [k for k in (*PRESSURE_KEYS, "pressure_range") if k in cfg]
+        raise CommandError(f"--config gives {' and '.join(repr(k) for k in given)}; keep one "
+                           f"('pressures' and 'pressure' are two spellings of one key)")
+    elif any(k in cfg for k in PRESSURE_KEYS):
+        key = next(k for k in PRESSURE_KEYS if k in cfg)
+        raw = cfg[key]
         raw = raw if isinstance(raw, list) else [raw]
-        pressure = np.asarray([_number(v, "pressures") for v in raw], dtype=float)
+        if not raw:
+            raise CommandError(f"{key} in --config must hold at least one nominal pressure "
+                               f"[Pa]; got {cfg[key]!r}")
+        pressure = np.asarray([_number(v, key) for v in raw], dtype=float)
     elif "pressure_range" in cfg:
         raw = cfg["pressure_range"]
         if not isinstance(raw, list) or len(raw) != 3:
@@ -169,9 +179,8 @@ def _resolve_contact(args) -> dict:
 
     method = args.method or _text(cfg.get("method", "auto"), "method")
     rtol = args.rtol if args.rtol is not None else _number(cfg.get("rtol", 1e-6), "rtol")
-    csv_path = args.csv or (_text(cfg["csv"], "csv") if "csv" in cfg else None)
-    gaps_path = getattr(args, "gaps", None) or (_text(cfg["gaps"], "gaps") if "gaps" in cfg
-                                                else None)
+    csv_path = _output_path(args.csv, cfg, "csv", "--csv")
+    gaps_path = _output_path(getattr(args, "gaps", None), cfg, "gaps", "--gaps")
     adhesion = {}
     for key in ("work_of_adhesion", "energy_correction", "detachment_prefactor"):
         value = getattr(args, key)
@@ -220,9 +229,67 @@ def _resolve_contact(args) -> dict:
     settings = {"model": model, "params": params, "e_star": e_star, "pressure": pressure,
                 "method": method, "rtol": rtol, "csv": csv_path, "adhesion": adhesion,
                 "pull_off": want_pull_off, "theory": theory, "separation": want_separation,
-                "hardness": hardness, "gaps": gaps_path}
+                "hardness": hardness, "gaps": gaps_path,
+                "strict": bool(getattr(args, "strict", False)
+                               or _boolean(cfg.get("strict", False), "strict"))}
     _refuse_unavailable_pull_off(settings)
+    _refuse_shared_files(settings, args.config)
     return settings
+
+
+def _output_path(flag_value, cfg, key, flag):
+    """An output file from its flag (which wins) or its key in --config; None when neither
+    gives one; an empty name is refused (it would be no output at all, silently)."""
+    if flag_value is not None:
+        value, name = flag_value, flag
+    elif key in cfg:
+        value, name = _text(cfg[key], key), f"{key} in --config"
+    else:
+        return None
+    if not value.strip():
+        raise CommandError(f"{name} must name a file; got {value!r} (leave it out for no "
+                           f"{key} file)")
+    return value
+
+
+def _same_file(a: str, b: str) -> bool:
+    """Whether two paths name one file: the same path once links, '.', '..' and the case
+    rules of the platform are resolved, or (both existing) the same inode (a hard link)."""
+    def norm(path):
+        return os.path.normcase(os.path.realpath(os.path.abspath(path)))
+
+    if norm(a) == norm(b):
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:          # one of them does not exist (yet): different names, not one file
+        return False
+
+
+def _refuse_shared_files(settings: dict, config_path) -> None:
+    """Two outputs of one run that are one file (``--csv same.csv --gaps ./same.csv``, a
+    link, another spelling) would leave only the one written last; an output that is one of
+    the run's inputs (--config, --topography, --psd) would replace what was read. Both are
+    refused before anything is solved."""
+    outputs = [(flag, path) for flag, path in (("--csv", settings["csv"]),
+                                               ("--gaps", settings["gaps"])) if path]
+    inputs = [("--config", config_path)] if config_path else []
+    for key, param in SURFACE_MODELS[settings["model"]].parameters.items():
+        if param.path and isinstance(settings["params"].get(key), str):
+            inputs.append((param.flag_for(key), settings["params"][key]))
+    for i, (flag, path) in enumerate(outputs):
+        for other, other_path in outputs[i + 1:]:
+            if _same_file(path, other_path):
+                raise CommandError(
+                    f"{flag} and {other} name the same file ({path!r} and {other_path!r} are "
+                    f"both {os.path.realpath(path)!r}): one would overwrite the other; give "
+                    f"each output a file of its own")
+        for other, other_path in inputs:
+            if _same_file(path, other_path):
+                raise CommandError(
+                    f"{flag} names the input file of {other} ({path!r} is "
+                    f"{os.path.realpath(other_path)!r}): writing it would replace what this "
+                    f"run reads; give the output another file")
 
 
 def _pressure_range(pmin, pmax, n) -> np.ndarray:
@@ -252,5 +319,28 @@ def _config_value(key, value, config_path, param):
 
 
 def _make_surface(model: str, params: dict):
-    """The surface of a declared model (``SURFACE_MODELS[model].build(**params)``)."""
-    return SURFACE_MODELS[model].build(**params)
+    """The surface of a declared model (``SURFACE_MODELS[model].build(**params)``); a
+    ValueError that names a parameter as the API spells it (``q_unit=``, ``C_unit must``) is
+    raised as a CommandError that names its flag (``--q-unit``, ``--c-unit``)."""
+    declared = SURFACE_MODELS[model].parameters
+    try:
+        return SURFACE_MODELS[model].build(**params)
+    except CommandError:
+        raise
+    except ValueError as exc:
+        raise CommandError(_flag_names(str(exc), declared)) from None
+
+
+def _flag_names(message: str, declared: dict) -> str:
+    """``message`` with the API's keyword arguments of the model (``q_unit=``, a message
+    that opens with ``C_unit must``, a quoted ```physical_sizes```) written as its
+    command-line flags (``--q-unit``, ``--c-unit``, ``--physical-size``; in a TOML file the
+    [surface] key keeps the API's name)."""
+    import re
+
+    for key, param in declared.items():
+        flag = param.flag_for(key)
+        message = re.sub(rf"(?<![\w.-]){re.escape(key)}=(?!=) ?", f"{flag} ", message)
+        message = re.sub(rf"^{re.escape(key)}(?= must )", flag, message)
+        message = message.replace(f"`{key}`", flag)
+    return message

@@ -73,25 +73,30 @@ This module holds the subcommands and :func:`main`; the parser is in
 """
 from __future__ import annotations
 
+import contextlib
 import gc
 import math
 import os
 import sys
 import time
+import warnings
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
 from ..surfaces.models import SEED_POISSON as SEED_POISSON_DEFAULT
 from ..surfaces.models import SEED_WORK_OF_ADHESION, SEED_YOUNG_MODULUS, seed_e_star
-from .parser import (FIGURE2_COLUMNS, THEORY_NAMES, CommandError, _Parser, _surface_choices,
-                         build_parser)
+from .parser import (FIGURE2_COLUMNS, FLAGGED_EXIT_CODE, THEORY_NAMES, CommandError, _Parser,
+                     _surface_choices, build_parser)
 from .config import _resolve_contact, _make_surface
-from .output import _OutputSet, _write_csv
+from .output import TERMINATED_EXIT_CODE, Terminated, _OutputSet, _write_csv
 
 __all__ = ["main", "build_parser",
            # re-exported (persson_fast.cli.<name> as before the split)
            "CommandError", "THEORY_NAMES", "FIGURE2_COLUMNS", "_Parser", "_surface_choices"]
+
+#: the exit code of an interrupted command (Ctrl-C: 128 + SIGINT, as a shell reports it)
+INTERRUPTED_EXIT_CODE = 130
 
 #: largest nominal pressure of the seed's Fig. 2. [Pa]
 SEED_P_MAX = 100e6
@@ -365,7 +370,7 @@ def _cmd_contact(args) -> int:
                                            status)):
         mp_s = f"{mp:13.5g}" if np.isfinite(mp) else f"{'-':>13}"
         more = "".join(f"  {col[i]:12.6g}" for col in extra.values())
-        print(f"{p:14.6g}  {a:12.6g}  {mp_s}{more}  {'ok' if st == 0 else f'code {int(st)}'}")
+        print(f"{p:14.6g}  {a:12.6g}  {mp_s}{more}  {status_name(st)}")
     if not res.success:
         print(f"warning: {res.message}")
     if sep is not None and not sep.success:
@@ -388,6 +393,14 @@ def _cmd_contact(args) -> int:
                else f"+- {po['error_estimate']:.2g} Pa"
                + ("" if po["converged"] else ", NOT converged to rtol"))
         print(f"pull-off stress: {sigma_c:.5g} Pa ({how}, {time.perf_counter() - t1:.3g} s)")
+    flags = []                   # what --strict turns into FLAGGED_EXIT_CODE
+    n_flagged = int(np.count_nonzero(status))
+    if n_flagged:
+        names = ", ".join(dict.fromkeys(status_name(st) for st in status if st != 0))
+        flags.append(f"{n_flagged} of {status.size} pressure(s) flagged ({names})")
+    if sigma_c is not None and s["adhesion"].get("work_of_adhesion", 0.0) > 0 \
+            and not po["converged"]:
+        flags.append("the pull-off stress did not converge to rtol")
     timing = f"time: {elapsed:.3g} s"
     if "compile" in res.timings:
         timing += f" (compile {res.timings['compile']:.3g} s)"
@@ -396,6 +409,10 @@ def _cmd_contact(args) -> int:
     if s.get("gaps"):
         gap_columns = _gap_columns(pf, surface, e_star, res.pressure,
                                    s["adhesion"].get("energy_correction"), max(s["rtol"], 1e-3))
+        gap_status = np.unique(gap_columns["status"][gap_columns["status"] != 0])
+        if gap_status.size:
+            flags.append("the gap distribution flagged ("
+                         + ", ".join(status_name(st) for st in gap_status) + ")")
     files = [path for path in (s["csv"], s.get("gaps")) if path]
     for path in files:
         folder = os.path.dirname(path)
@@ -415,7 +432,29 @@ def _cmd_contact(args) -> int:
             if gap_columns is not None:
                 _write_csv(outputs.path(s["gaps"]), gap_columns)
             outputs.commit()
+    if flags and s.get("strict"):
+        print(f"error: --strict: {'; '.join(flags)} (exit code {FLAGGED_EXIT_CODE})",
+              file=sys.stderr)
+        return FLAGGED_EXIT_CODE
     return 0
+
+
+def status_name(code) -> str:
+    """The name of a status code in the printed table: 'ok', the constant's name in
+    :mod:`persson_fast._kernels.status` (``GRID_CAP``), or ``code N`` for one it lacks."""
+    code = int(code)
+    if code == 0:
+        return "ok"
+    return _status_names().get(code, f"code {code}")
+
+
+def _status_names() -> dict:
+    """{code: name} of the status codes of :mod:`persson_fast._kernels.status` (those with a
+    message in its STATUS_MESSAGES table)."""
+    from .._kernels import status
+
+    return {value: name for name, value in vars(status).items()
+            if name.isupper() and type(value) is int and value in status.STATUS_MESSAGES}
 
 
 #: seconds a contact solve runs before its progress bar appears
@@ -454,17 +493,26 @@ class _Joined:
     reads, joined along the pressures."""
 
     ROWS = ("pressure", "area", "mean_contact_pressure", "mean_contact_stress", "status",
-            "sticky", "iterations")
+            "sticky", "iterations", "elastic_area", "plastic_area")
 
     def __init__(self, parts):
         from ..results import summarize_status
 
         first = parts[0]
+        # a field a scene does not have (sticky and iterations without adhesion, the elastic
+        # and plastic areas without a yield wall) is None in every block, and None joined
         for name in self.ROWS:
-            setattr(self, name, np.concatenate([getattr(r, name) for r in parts]))
-        for name in ("elastic_area", "plastic_area"):
-            if getattr(first, name, None) is not None:
-                setattr(self, name, np.concatenate([getattr(r, name) for r in parts]))
+            values = [getattr(r, name, None) for r in parts]
+            missing = [v is None for v in values]
+            if all(missing):
+                setattr(self, name, None)
+            elif any(missing):
+                raise RuntimeError(
+                    f"the blocks of pressures disagree on whether the result has {name!r} "
+                    f"(None in block(s) {[i for i, m in enumerate(missing) if m]}): a bug, "
+                    f"please report the scene")
+            else:
+                setattr(self, name, np.concatenate([np.atleast_1d(v) for v in values]))
         self.method, self.theory, self.theory_gamma = first.method, first.theory, first.theory_gamma
         self.success, self.message = summarize_status(self.status)
         offset, notes = 0, []
@@ -559,12 +607,13 @@ def main(argv=None) -> int:
     if not argv or (argv[0].startswith("-") and argv[0] not in ("-h", "--help", "--version")):
         argv = ["figure2", *argv]
     try:
-        parser = build_parser()
-        args = parser.parse_args(argv)
-        _log_to_stderr(getattr(args, "quiet", False))
-        handler = {"figure2": _cmd_figure2, "contact": _cmd_contact,
-                   "info": _cmd_info}[args.command]
-        return int(handler(args) or 0)
+        with _warnings_as_lines():
+            parser = build_parser()
+            args = parser.parse_args(argv)
+            _log_to_stderr(getattr(args, "quiet", False))
+            handler = {"figure2": _cmd_figure2, "contact": _cmd_contact,
+                       "info": _cmd_info}[args.command]
+            return int(handler(args) or 0)
     except ValueError as exc:  # the package's (and this module's) invalid-input errors
         print(f"error: {exc}", file=sys.stderr)
         return 2
@@ -576,7 +625,32 @@ def main(argv=None) -> int:
         return 1
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
-        return 130
+        return INTERRUPTED_EXIT_CODE
+    except Terminated:  # SIGTERM while the outputs were written: their temporary files removed
+        print("terminated", file=sys.stderr)
+        return TERMINATED_EXIT_CODE
+
+
+@contextlib.contextmanager
+def _warnings_as_lines():
+    """Inside the block a warning is printed on stderr as one line, ``warning: <message>``
+    (no file, line number or source line), once per message; the warning filters and the
+    previous way of showing them are put back after it."""
+    shown = set()
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        text = " ".join(str(message).split())
+        if text in shown:
+            return
+        shown.add(text)
+        try:
+            print(f"warning: {text}", file=sys.stderr, flush=True)
+        except (OSError, ValueError):   # stderr closed: the warning has nowhere to go
+            pass
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield
 
 
 #: allocations between collections of the youngest generation in the console script

@@ -1,8 +1,10 @@
 """The output files of the ``persson-fast`` command, written whole or not at all.
 
 :class:`_OutputSet` writes each output to a temporary file in its folder and renames the set
-onto the final names together, with Ctrl-C held back during the renames
-(:func:`_sigint_held`); :func:`_write_csv` writes the CSV tables (floats that round-trip).
+onto the final names together, with Ctrl-C and SIGTERM held back during the renames
+(:func:`_sigint_held`); while the set is open SIGTERM raises :class:`Terminated`, so that its
+temporary files are removed and the old outputs stay as they were; :func:`_write_csv` writes
+the CSV tables (floats that round-trip).
 """
 from __future__ import annotations
 
@@ -34,32 +36,77 @@ def _write_csv(path, columns: dict) -> None:
             writer.writerow([f(a[i]) for f, a in zip(fmt, arrays)])
 
 
+class Terminated(BaseException):
+    """SIGTERM arrived while output files were being written (:class:`_OutputSet`): raised so
+    that the temporary files are removed on the way out; the command exits with
+    ``TERMINATED_EXIT_CODE``. A BaseException, like KeyboardInterrupt, so that no ``except
+    Exception`` on the way swallows it."""
+
+
+#: the exit code of a command ended by SIGTERM while writing its outputs (128 + SIGTERM)
+TERMINATED_EXIT_CODE = 128 + 15
+
+
+def _raise_terminated(signum, frame):
+    raise Terminated
+
+
 @contextlib.contextmanager
 def _sigint_held():
-    """Hold back SIGINT (Ctrl-C) inside the block; one that came meanwhile is raised after it.
+    """Hold back SIGINT (Ctrl-C) and SIGTERM inside the block; one that came meanwhile is
+    delivered after it (a Ctrl-C raises KeyboardInterrupt, SIGTERM goes to its handler).
 
-    Outside the main thread (where Python cannot install signal handlers), or when SIGINT has a
-    handler that Python did not install (and so could not put back), the block runs as it is.
+    Outside the main thread (where Python cannot install signal handlers), or for a signal
+    whose handler Python did not install (and so could not put back), the block runs as it is.
     """
     caught = []
-    previous = signal.getsignal(signal.SIGINT)
-    held = False
-    if previous is not None:
+    held = {}
+    for signum in (signal.SIGINT, signal.SIGTERM):
+        previous = signal.getsignal(signum)
+        if previous is None:
+            continue
         try:
-            signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
-            held = True
+            signal.signal(signum, lambda num, frame: caught.append(num))
+        except ValueError:  # not the main thread of the main interpreter
+            break
+        held[signum] = previous
+    try:
+        yield
+    finally:
+        for signum, previous in held.items():
+            signal.signal(signum, previous)
+        for signum in dict.fromkeys(caught):
+            previous = held[signum]
+            if previous is signal.SIG_IGN:
+                continue
+            if signum == signal.SIGINT:
+                if callable(previous):
+                    previous(signal.SIGINT, None)  # the default one raises KeyboardInterrupt
+                else:
+                    raise KeyboardInterrupt
+            else:
+                signal.raise_signal(signum)        # to its own handler (or the default: exit)
+
+
+@contextlib.contextmanager
+def _sigterm_raises():
+    """Inside the block SIGTERM raises :class:`Terminated` (so that ``finally`` clauses and
+    ``with`` blocks run: temporary files are removed) instead of ending the process at once;
+    the previous handler is put back after it. Outside the main thread, or where SIGTERM has
+    a handler Python did not install, the block runs as it is."""
+    previous = signal.getsignal(signal.SIGTERM)
+    installed = False
+    if previous is not None and previous is not signal.SIG_IGN:
+        try:
+            signal.signal(signal.SIGTERM, _raise_terminated)
+            installed = True
         except ValueError:  # not the main thread of the main interpreter
             pass
     try:
         yield
     finally:
-        if held:
-            signal.signal(signal.SIGINT, previous)
-            if caught and previous is not signal.SIG_IGN:
-                if callable(previous):
-                    previous(signal.SIGINT, None)  # the default one raises KeyboardInterrupt
-                else:
-                    raise KeyboardInterrupt
+        if installed:
+            signal.signal(signal.SIGTERM, previous)
 
 
 class _OutputSet:
@@ -67,28 +114,37 @@ class _OutputSet:
 
     ``path(final)`` creates an empty temporary file in the folder of ``final`` and returns its
     name, to be written instead of ``final``; ``commit()`` renames each onto its final name
-    (``os.replace``: atomic within a folder) with Ctrl-C held back, so an interrupt leaves either
-    all the old files or all the new ones, and prints ``wrote PATH``, adding when an existing
-    file was replaced. Leaving the ``with`` block otherwise (an error, a KeyboardInterrupt)
-    removes the temporary files and leaves the existing outputs untouched.
+    (``os.replace``: atomic within a folder) with Ctrl-C and SIGTERM held back, so an interrupt
+    leaves either all the old files or all the new ones, and prints ``wrote PATH``, adding when
+    an existing file was replaced. Leaving the ``with`` block otherwise (an error, a
+    KeyboardInterrupt, SIGTERM, which raises :class:`Terminated` inside the block) removes the
+    temporary files and leaves the existing outputs untouched, byte for byte.
     """
 
     def __init__(self):
         self._pending = []  # (temporary name, final name)
+        self._sigterm = None
 
     def __enter__(self):
+        self._sigterm = _sigterm_raises()
+        self._sigterm.__enter__()
         return self
 
     def __exit__(self, *exc_info):
-        self.discard()
+        try:
+            with _sigint_held():       # a signal now would leave temporary files behind
+                self.discard()
+        finally:
+            self._sigterm.__exit__(None, None, None)
         return False
 
     def path(self, final: str) -> str:
         folder = os.path.dirname(os.path.abspath(final))
-        fd, tmp = tempfile.mkstemp(prefix=f".{os.path.basename(final)}.", suffix=".tmp",
-                                   dir=folder)
-        self._pending.append((tmp, final))
-        os.close(fd)
+        with _sigint_held():           # the temporary file is known as soon as it exists
+            fd, tmp = tempfile.mkstemp(prefix=f".{os.path.basename(final)}.", suffix=".tmp",
+                                       dir=folder)
+            self._pending.append((tmp, final))
+            os.close(fd)
         return tmp
 
     def discard(self) -> None:

@@ -16,12 +16,26 @@ from ..plan import refusal_reasons
 from ..surfaces.models import SEED_POISSON as SEED_POISSON_DEFAULT
 from ..surfaces.models import BAND, SURFACE_MODELS
 
-__all__ = ["build_parser", "CommandError", "THEORY_NAMES", "FIGURE2_COLUMNS"]
+__all__ = ["build_parser", "CommandError", "THEORY_NAMES", "FIGURE2_COLUMNS",
+           "FLAGGED_EXIT_CODE"]
 
 #: the area theories of ``contact --theory`` (``persson_fast.theories.THEORIES``, spelt out
 #: here so that the parser does not import the compiled theory kernels; a test keeps the two
 #: equal)
 THEORY_NAMES = ("persson01", "yp08", "wm17", "xu24")
+
+#: the exit code of ``contact --strict`` when a result is flagged
+FLAGGED_EXIT_CODE = 3
+
+#: the exit codes of ``contact``, as its help lists them
+EXIT_CODES_TEXT = f"""\
+exit codes:
+  0    done (flagged rows are said in the status column and a warning)
+  1    an output file could not be written, or a numerical failure
+  2    invalid input (a flag, a TOML key, an input file)
+  {FLAGGED_EXIT_CODE}    --strict, and a result is flagged (the files are written)
+  130  interrupted (Ctrl-C); the files a run replaces are left as they were
+  143  terminated (SIGTERM) while writing the files; the old files are left as they were"""
 
 #: title of the group of flags every surface model shares (the band, ``surfaces.BAND``)
 _ALL_MODELS = "all models"
@@ -58,6 +72,15 @@ class _Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = _NEGATIVE_NUMBER
+
+
+class _ExitCodesFormatter(argparse.HelpFormatter):
+    """Help laid out as usual, the table of exit codes (:data:`EXIT_CODES_TEXT`) as written."""
+
+    def _fill_text(self, text, width, indent):
+        if text == EXIT_CODES_TEXT:
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
 
 
 # --------------------------------------------------------------------------------------------
@@ -111,15 +134,18 @@ def build_parser() -> argparse.ArgumentParser:
                     "(--theory) as options, alone or together. Refused: "
                     + "; ".join(refusal_reasons()) + ". A TOML file (--config) may give "
                     "the same settings; flags override it.",
+        epilog=EXIT_CODES_TEXT,
+        formatter_class=_ExitCodesFormatter,
     )
     ct.add_argument("--config", metavar="FILE.toml",
                     help="TOML file: a [surface] table with model = "
                          + " | ".join(f"'{name}'" for name in SURFACE_MODELS)
                          + " and its parameters" + _path_keys_text()
-                         + "; top-level e_star, pressures (or pressure_range = "
-                         "[pmin, pmax, n]), method, rtol, csv, work_of_adhesion, "
-                         "energy_correction, detachment_prefactor, pull_off, hardness, "
-                         "hardness_exponent, theory, theory_gamma, separation")
+                         + "; top-level e_star, pressures (or pressure, the same key; "
+                         "or pressure_range = [pmin, pmax, n]), method, rtol, csv, "
+                         "work_of_adhesion, energy_correction, detachment_prefactor, "
+                         "pull_off, hardness, hardness_exponent, theory, theory_gamma, "
+                         "separation, gaps, strict")
     ct.add_argument("--surface", choices=_surface_choices(), help="surface model")
     _add_surface_flags(ct)
     ct.add_argument("--e-star", type=float, metavar="E", help="effective modulus E/(1-nu^2) [Pa]")
@@ -153,9 +179,10 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--theory-gamma", type=float, metavar="THEORY_GAMMA",
                    help="the corrected theory's parameter gamma (default: the published one)")
     pr = ct.add_mutually_exclusive_group()
-    pr.add_argument("--pressure", type=float, nargs="+", metavar="P",
+    pr.add_argument("--pressure", "--pressures", dest="pressure", type=float, nargs="+",
+                    metavar="P",
                     help="nominal pressures [Pa]; negative (tension, e.g. -0.5e6) needs "
-                         "adhesion")
+                         "adhesion (--pressures is the same flag)")
     pr.add_argument("--pressure-range", type=float, nargs=3, metavar=("PMIN", "PMAX", "N"),
                     help="N pressures from PMIN to PMAX [Pa], evenly spaced (e.g. "
                          "-1e6 1e6 5)")
@@ -172,6 +199,12 @@ def build_parser() -> argparse.ArgumentParser:
                          "compression_per_contact_area_Pa, status[, elastic_area, "
                          "plastic_area][, separation_m, stiffness_Pa_per_m, "
                          "elastic_energy_J_per_m2][, pull_off_stress_Pa]")
+    ct.add_argument("--strict", action="store_true",
+                    help=f"exit with code {FLAGGED_EXIT_CODE} when a result is flagged: a "
+                         "row whose status is not ok (in the table, or in the --gaps file), "
+                         "or a pull-off stress not converged to rtol; the table is printed "
+                         "and the files are written first (without --strict such a run exits "
+                         "0 and says so in its warnings and status column)")
     ct.add_argument("--gaps", metavar="GAPS_FILE",
                     help="also write the distribution of interfacial gaps at every pressure "
                          "> 0 to this CSV file (replaced if it exists; scenes without "
