@@ -1,0 +1,143 @@
+"""Hostile input to the compiled kernels (issue 42, items 3-5).
+
+* contact-law tables inside ``@numba.njit``: every permutation of the five arrays is refused
+  with ``BAD_LAW``; arrays other than 1-D float64 do not compile (and the Python methods raise
+  a ValueError);
+"""
+import itertools
+import math
+from dataclasses import replace
+
+import numba
+import numpy as np
+import pytest
+from numba.core.errors import TypingError
+
+import persson_fast as pf
+from persson_fast import embed
+from persson_fast._kernels.status import BAD_LAW, OK
+
+SEED = pf.seed_scene()
+
+
+# ---------------------------------------------------------------------------------------------
+# item 3: contact-law tables inside @numba.njit
+# ---------------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def laws():
+    return [embed.contact_law(SEED, e_star=1e9, rtol=1e-8),
+            embed.contact_law(pf.SelfAffine(hurst=0.3, q0=1e3, q1=1e10, h_rms=1e-6),
+                              e_star=1e8, energy_correction=0.45, rtol=1e-4)]
+
+
+@numba.njit(cache=False)
+def _every_entry(table, u, p):
+    """A user's kernel calling every compiled law entry point."""
+    out = np.empty(5)
+    codes = np.empty(6, dtype=np.int64)
+    out[0], codes[0] = embed.law_pressure(table, u)
+    out[1], codes[1] = embed.law_stiffness(table, u)
+    a, b, codes[2] = embed.law_pressure_stiffness(table, u)
+    out[2] = a + b
+    out[3], codes[3] = embed.law_separation(table, p)
+    codes[4] = embed.law_status(table)
+    op = np.empty(1)
+    ok = np.empty(1)
+    st = np.empty(1, dtype=np.int64)
+    embed.law_sweep(table, np.full(1, u), op, ok, st)
+    out[4] = op[0] + ok[0]
+    codes[5] = st[0]
+    return out, codes
+
+
+def test_issue_reproducer_ln_p_and_ln_k_swapped(laws):
+    """The issue's table: ln p and ln K exchanged (with and without their slopes) gave a
+    pressure 1e9 times the law's with status 0; now NaN and BAD_LAW from every entry."""
+    law = laws[0]
+    v, y, dy, z, dz = law.table
+    u, status = embed.law_separation(law.table, 1.7e5)
+    assert status == OK
+    out, codes = _every_entry(law.table, u, 1.7e5)
+    assert list(codes) == [OK] * 6 and out[0] == pytest.approx(1.7e5, rel=1e-12)
+    for bad in ((v, z, dy, y, dz), (v, z, dz, y, dy)):
+        out, codes = _every_entry(bad, u, 1.7e5)
+        assert list(codes) == [BAD_LAW] * 6, codes
+        assert np.all(np.isnan(out)), out
+
+
+def test_every_permutation_of_the_arrays_is_refused(laws):
+    """All 119 mix-ups of the five arrays break a rule: the identity ln(-dy) = v + z - y
+    ties four of them, and ln u <-> ln K (which keeps it) puts a falling ln K where ln u
+    must rise."""
+    for law in laws:
+        assert embed.law_status(law.table) == OK
+        passed = [perm for perm in itertools.permutations(range(5))
+                  if perm != (0, 1, 2, 3, 4)
+                  and embed.law_status(tuple(law.table[k] for k in perm)) != BAD_LAW]
+        assert passed == []
+
+
+@pytest.mark.parametrize("where", [0, "mid", -1])
+def test_a_wrong_ln_k_value_at_a_checked_node_is_refused(laws, where):
+    law = laws[0]
+    n = law.table[0].size
+    i = {0: 0, "mid": (2 * (n - 1)) // 4, -1: n - 1}[where]
+    t = tuple(a.copy() for a in law.table)
+    t[3][i] += 1e-8 * (1.0 + abs(t[3][i]))          # K off by ~1e-8 relative
+    assert embed.law_status(t) == BAD_LAW
+
+
+def test_what_the_check_cannot_see_is_a_valid_law_of_other_units(laws):
+    """Documented limit: ln p and ln K shifted by one constant (p in kPa, K in kPa/m) is a
+    consistent table of another law; it passes and gives p / 1000."""
+    law = laws[0]
+    v, y, dy, z, dz = law.table
+    c = math.log(1000.0)
+    kpa = (v, y - c, dy, z - c, dz)
+    u = law.separation[40] * 1.01
+    p, status = embed.law_pressure(law.table, u)
+    p_k, status_k = embed.law_pressure(kpa, u)
+    assert status == status_k == OK
+    assert p_k * 1000.0 == pytest.approx(p, rel=1e-12)
+
+
+def test_float64_tables_at_the_ends_of_the_builder_pass(laws):
+    """The identity's slack (1e-12 of 1 + |v| + |y| + |z|) holds ~1e4x over the builder's
+    rounding, also far up the pressure range (ln u ~ -440) and at rtol 1e-12."""
+    law = embed.contact_law(SEED, e_star=1e9, rtol=1e-12, pressure_max=4 * laws[0].pressure_max)
+    v, y, dy, z, dz = law.table
+    assert v[0] < -400.0 and embed.law_status(law.table) == OK
+    gap = np.abs(np.log(-dy) - (v + z - y)) / (1 + abs(v) + abs(y) + abs(z))
+    assert gap.max() < 1e-15
+
+
+@pytest.mark.parametrize("kind", ["float32", "one float32", "int64", "complex",
+                                  "2-D", "four arrays"])
+def test_tables_of_another_type_do_not_compile(laws, kind):
+    law = laws[0]
+    t = law.table
+    bad = {"float32": lambda: tuple(a.astype(np.float32) for a in t),
+           "one float32": lambda: (t[0], t[1].astype(np.float32), t[2], t[3], t[4]),
+           "int64": lambda: tuple(np.round(a).astype(np.int64) for a in t),
+           "complex": lambda: tuple(a.astype(np.complex128) for a in t),
+           "2-D": lambda: tuple(a[None, :] for a in t),
+           "four arrays": lambda: t[:4]}[kind]()
+    with pytest.raises(TypingError, match=r"table: the contact law's table must be a tuple of "
+                                          r"five 1-D float64 arrays"):
+        embed.law_status(bad)
+    with pytest.raises(TypingError, match=r"five 1-D float64 arrays"):
+        _every_entry(bad, float(law.separation[40]), 1e6)
+    if kind != "four arrays":
+        with pytest.raises(ValueError, match=r"table: the contact law's table must be a tuple "
+                                             r"of five 1-D float64 arrays.*got arrays"):
+            replace(law, table=bad).pressure_at(float(law.separation[40]))
+
+
+def test_float32_table_of_the_issue_is_refused_from_python(laws):
+    law = laws[0]
+    f32 = replace(law, table=tuple(a.astype(np.float32) for a in law.table))
+    for call in (lambda: f32.evaluate([1e-9]), lambda: f32.pressure_at(1e-9),
+                 lambda: f32.stiffness_at(1e-9)):
+        with pytest.raises(ValueError, match=r"got arrays 0: float32 of 1 dimensions, "
+                                             r"1: float32"):
+            call()
