@@ -3,6 +3,10 @@
 * contact-law tables inside ``@numba.njit``: every permutation of the five arrays is refused
   with ``BAD_LAW``; arrays other than 1-D float64 do not compile (and the Python methods raise
   a ValueError);
+* ``solve_diffusion`` at the ends of double precision: the issue's ``([0, 1e300], 1e6)`` is
+  within the contract |A - A_exact| <= rtol A + 1e-12 (A_exact = 5.6e-145); start distances
+  and stresses whose scaled diffusion times are not doubles are refused with a ValueError
+  (before: NONFINITE, A = 1 with status 0 from bnr, a crash of fixed-grid, an OverflowError);
 """
 import itertools
 import math
@@ -141,3 +145,61 @@ def test_float32_table_of_the_issue_is_refused_from_python(laws):
         with pytest.raises(ValueError, match=r"got arrays 0: float32 of 1 dimensions, "
                                              r"1: float32"):
             call()
+
+
+# ---------------------------------------------------------------------------------------------
+# item 4: solve_diffusion at the ends of double precision
+# ---------------------------------------------------------------------------------------------
+COMPILED_ONE_WALL = ["cn", "bnr", "fixed-grid", "implicit-euler"]
+
+
+def _erf_area(sigma0, g_end):
+    """The free solution's area erf(sigma0 / (2 sqrt G)), to full relative accuracy also
+    where it is tiny (erf x = 2x/sqrt(pi) (1 - x^2/3 ...))."""
+    x = sigma0 / (2.0 * math.sqrt(g_end))
+    return math.erf(x) if x > 1e-8 else 2.0 * x / math.sqrt(math.pi)
+
+
+@pytest.mark.parametrize("method", COMPILED_ONE_WALL)
+@pytest.mark.parametrize("G, sigma0", [([0.0, 1e300], 1e6),          # the issue's call
+                                       ([0.0, 1.0], 1e-150),          # the smallest allowed
+                                       ([0.0, 1e300], 1e150),
+                                       ([0.0, 1e-300], 1e-160)])
+def test_tiny_areas_are_within_the_contract_or_flagged(method, G, sigma0):
+    """A = sigma0 / sqrt(pi G) ~ 5.6e-145 is no contact: 0.0 meets the documented contract
+    |A - A_exact| <= rtol A + 1e-12 (the rtol parameter of solve_diffusion says so); a
+    result outside it must carry a status."""
+    r = pf.solve_diffusion(G, sigma0, method=method)
+    exact = _erf_area(sigma0, G[-1])
+    a = r.area[0, -1]
+    assert 0.0 <= a <= 1.0
+    assert abs(a - exact) <= 1e-6 * exact + 1e-12 or r.status[0] != OK, (a, exact, r.status)
+    assert "1e-12" in pf.solve_diffusion.__doc__.split("level :")[0].split("rtol :")[1]
+
+
+@pytest.mark.parametrize("method", COMPILED_ONE_WALL + [None])
+@pytest.mark.parametrize("G, sigma0, sigma_a, match", [
+    # the start 1e-160 of sqrt(G) from the wall: G / y0^2 overflows (fixed-grid crashed the
+    # process, bnr returned A = 1 with status 0, cn NONFINITE with A = 0.28)
+    ([0.0, 1e300], 1e-10, 0.0, r"pressure \+ sigma_a\(0\), the start's distance from the "
+                               r"wall, must be 0 \(or below\) or at least 1e-150 times .* = "
+                               r"1e\+150 Pa .*got pressure\[0\] = 1e-10 Pa"),
+    ([0.0, 1.0], 1e-155, 0.0, r"got pressure\[0\] = 1e-155 Pa with sigma_a\(0\) = 0.0 Pa"),
+    ([0.0, 1.0], [1.0, 1e-160], 0.0, r"got pressure\[1\] = 1e-160"),
+    # a stress whose square overflows (was: OverflowError from the sweep's scaling)
+    ([0.0, 1e20], 1e300, 0.0, r"pressure must lie within \+-1e\+150 Pa .*got "
+                              r"pressure\[0\] = 1e\+300"),
+    ([0.0, 1e300], 1e6, [0.0, 1e200], r"sigma_a must lie within \+-1e\+150 Pa .*got "
+                                      r"sigma_a\[0, 1\] = 1e\+200"),
+])
+def test_scaled_times_beyond_doubles_are_refused(method, G, sigma0, sigma_a, match):
+    with pytest.raises(ValueError, match=match):
+        pf.solve_diffusion(G, sigma0, sigma_a, method=method)
+
+
+def test_start_on_the_wall_is_still_separated_not_refused():
+    """y0 = pressure + sigma_a(0) <= 0 is the separated start (A = 0), not a tiny distance."""
+    r = pf.solve_diffusion([0.0, 1e300], [0.0, 1e6], method="cn")
+    assert r.area[0, -1] == 0.0 and list(r.status) == [OK, OK]
+    r = pf.solve_diffusion([0.0, 1.0], -0.5, [0.5, 0.7], method="cn")
+    assert r.area[0, -1] == 0.0 and r.status[0] == OK
