@@ -101,6 +101,48 @@ def _check_pressure(pressure, allow_negative: bool) -> np.ndarray:
     return np.atleast_1d(p).astype(np.float64)
 
 
+#: largest |pressure| and |sigma_a| the compiled one-wall methods take [Pa]: the sweep divides
+#: G by the square of the scene's stress scale, which must be a double
+STRESS_MAX = 1e150
+#: smallest start distance pressure + sigma_a(0) > 0 from the wall, as a share of the scene's
+#: stress scale max(sqrt(G[-1]), |pressure|, |sigma_a|) [-]: the kernels divide G by its
+#: square (below ~1e-154 that is inf: cn and implicit-euler flagged NONFINITE, bnr returned
+#: A = 1 with status 0, fixed-grid crashed the process)
+START_MIN = 1e-150
+
+
+def _check_scaled_range(G: np.ndarray, rows: np.ndarray, p: np.ndarray) -> None:
+    """Refuse stresses whose scaled diffusion times are not doubles (ValueError).
+
+    The one-wall kernels work in units of the scene's stress scale (``run_sweep``) and then
+    of each pressure's start distance y0 = pressure + sigma_a(0) from the wall; G over the
+    square of either must be a finite double. Where the scale is sqrt(G[-1]), a y0 below
+    START_MIN of it has an area below ~y0 / sqrt(pi G[-1]) < 1e-150.
+    """
+    for name, arr in (("pressure", p), ("sigma_a", rows)):
+        big = np.abs(arr) > STRESS_MAX
+        if np.any(big):
+            idx = np.unravel_index(int(np.argmax(big)), arr.shape)
+            raise ValueError(f"{name} must lie within +-{STRESS_MAX!r} Pa (the solvers divide G "
+                             f"by the square of the largest stress, which must be a double); "
+                             f"got {name}[{', '.join(str(int(i)) for i in idx)}] = "
+                             f"{arr[idx].item()!r}")
+    scale = max(float(np.sqrt(G[-1])), float(np.max(np.abs(p))),
+                float(np.max(np.abs(rows))) if rows.size else 0.0)
+    y0 = p + rows[:, 0]
+    tiny = (y0 > 0.0) & (y0 < START_MIN * scale)
+    if np.any(tiny):
+        i = int(np.argmax(tiny))
+        raise ValueError(f"pressure + sigma_a(0), the start's distance from the wall, must be 0 "
+                         f"(or below) or at least {START_MIN!r} times the scene's stress scale "
+                         f"max(sqrt(G[-1]), |pressure|, |sigma_a|) = {scale!r} Pa [Pa]: the "
+                         f"solvers divide G by its square, which overflows below that (and "
+                         f"where the scale is sqrt(G[-1]) the area is below ~1e-150 there); "
+                         f"got pressure[{i}] = {p[i].item()!r} Pa with sigma_a(0) = "
+                         f"{rows[i, 0].item()!r} Pa (solve such pressures in a call of their "
+                         f"own, or take A = 0)")
+
+
 def _is_linear(G: np.ndarray, rows: np.ndarray) -> bool:
     """True when every wall row is exactly a + b G (no jumps)."""
     if G.size < 2:
@@ -147,7 +189,11 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
         wall may jump. [Pa^2]
     pressure : float or array_like, shape (n_p,)
         Nominal stress sigma0 (compressive > 0). Negative values need a wall with
-        sigma_a > 0; at or below -sigma_a(0) the surfaces are separated (A = 0). [Pa]
+        sigma_a > 0; at or below -sigma_a(0) the surfaces are separated (A = 0). The
+        compiled one-wall methods take |pressure| and |sigma_a| up to 1e150 Pa and a start
+        distance pressure + sigma_a(0) > 0 of at least 1e-150 times the largest of
+        sqrt(G[-1]), |pressure|, |sigma_a| (their scaled diffusion times must be doubles;
+        a ValueError otherwise). [Pa]
     sigma_a : float, array_like of shape (n_t,) or (n_p, n_t), or callable
         Detachment stress: the wall sits at -sigma_a(G). Samples: linear in G between the
         given points and equal to sigma_a[0] before G[0]; their interpolation is the wall
@@ -182,7 +228,10 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
         named explicitly that cannot serve the walls (jumps, non-linear, a yield wall)
         raises a ValueError.
     rtol : float
-        Target relative accuracy of the area, in [1e-12, 0.1]. [-]
+        Target relative accuracy of the area, in [1e-12, 0.1], with an absolute floor:
+        |A - A_exact| <= rtol A + 1e-12, or the status flags the result. An area far below
+        1e-12 (sigma0 + sigma_a(0) << sqrt(G): A ~ sigma0 / sqrt(pi G) without a wall) is
+        accurate to 1e-12 only, and may be 0.0 with status 0. [-]
     level : int or None
         Explicit resolution level >= 0 of a compiled method instead of rtol (each level
         halves the node spacing and the step, level 2 of "cn" is the rtol = 1e-6 grid); for
@@ -286,6 +335,8 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
     check_serves(use, jumps=jumps, nonlinear=not linear)
     if use == "analytic" and level is not None:
         raise ValueError("level applies to compiled methods only; got method = 'analytic'")
+    if use != "analytic":
+        _check_scaled_range(G_s, rows_s, p)
     t0 = time.perf_counter()
     if use == "analytic":
         out = _analytic_linear(G_s, rows_s, p)

@@ -95,8 +95,13 @@ BAD_SCENE     14    ``adhesive_area`` only: ``scene`` as :func:`adhesive_scene` 
 BAD_LAW       21    ``law_*`` only: ``table`` as :func:`contact_law` builds it -- five
                     arrays of one length n >= 2, ln u strictly increasing and ln p strictly
                     decreasing (both logarithms of doubles, in [-746, 710]), d ln p/d ln u
-                    < 0, ln K and d ln K/d ln u finite, every interval monotone
-                    (Fritsch-Carlson); checked before the separation or pressure
+                    < 0, ln K and d ln K/d ln u finite, ln K = ln p - ln u + ln(-d ln p/d
+                    ln u) (K = -dp/du; at 5 nodes, the ends included), every interval
+                    monotone (Fritsch-Carlson); checked before the separation or pressure.
+                    Any swap or other permutation of the five arrays breaks a rule; a wrong
+                    d ln K/d ln u array (finite) or a table of another scene cannot be seen.
+                    Arrays other than 1-D float64 (a float32 copy) do not compile: numba
+                    raises a TypingError that says so (``ContactLaw``'s methods: ValueError)
 BAD_INPUT     5     ``law_sweep`` only: outputs of another length than the separations
 ============  ====  ======================================================================
 

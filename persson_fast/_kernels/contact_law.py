@@ -17,8 +17,9 @@ NaN); ``BAD_SEPARATION`` (u not finite or <= 0: p and K are NaN); ``LAW_EXTRAPOL
 below the table: p and K are a continuation, not a result).
 
 Every public function here checks the whole table first (:func:`law_status`: one pass over
-the five arrays, no allocation), so a table that was cut, reversed, mixed up or holds a NaN
-gives NaN and ``BAD_LAW``, never a number and never a read past the end of an array. The
+the five arrays, no allocation), so a table that was cut, reversed, mixed up (any permutation
+of its five arrays) or holds a NaN gives NaN and ``BAD_LAW``, never a number and never a
+read past the end of an array; arrays other than 1-D float64 do not compile. The
 check is O(n) per call (n nodes): for many separations at once, :func:`law_sweep` checks the
 table once. The builder's own refinement loop, whose intermediate tables need not be
 monotone yet, uses :func:`law_sweep_unchecked`.
@@ -28,6 +29,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numba.core import types
+from numba.core.errors import TypingError
+from numba.extending import overload
 
 from .._jit import njit_serial
 from .status import BAD_INPUT, BAD_LAW, BAD_PRESSURE, BAD_SEPARATION, LAW_EXTRAPOLATED, OK
@@ -38,6 +42,51 @@ LOG_HIGH = 710.0
 #: relative slack of the kernel's Fritsch-Carlson test against the builder's (the two
 #: forms of one inequality differ by a few roundings)
 MONOTONE_SLACK = 1e-12
+#: slack of the identity ln(-dy) = v + z - y (d ln p/d ln u = -u K/p), relative to
+#: 1 + |v| + |y| + |z|: the builder's tables meet it to ~1e-16 (a few roundings of the
+#: logarithms); a float32 rounding of any of the four arrays breaks it by ~1e-8
+IDENTITY_SLACK = 1e-12
+#: the identity is checked at this many nodes, evenly spread from the first to the last (a
+#: logarithm each; at every node it would cost ~10 ns per node, 5x the rest of the check)
+IDENTITY_NODES = 5
+#: what a table's arrays must be; a compiled law_* function given anything else does not
+#: compile (numba raises a TypingError with this message)
+TABLE_TYPE_RULE = ("table: the contact law's table must be a tuple of five 1-D float64 arrays "
+                   "(ContactLaw.table as contact_law builds it: ln u [ln m], ln p [ln Pa], "
+                   "d ln p/d ln u [-], ln K [ln Pa/m], d ln K/d ln u [-])")
+
+
+def table_type_problem(law) -> str | None:
+    """None when ``law`` is a tuple of five 1-D float64 arrays, else what it is instead."""
+    if not isinstance(law, tuple) or len(law) != 5:
+        return (f"a {type(law).__name__} of length {len(law)}" if hasattr(law, "__len__")
+                else f"a {type(law).__name__}")
+    bad = [f"{k}: {a.dtype} of {a.ndim} dimensions" if isinstance(a, np.ndarray)
+           else f"{k}: a {type(a).__name__}" for k, a in enumerate(law)
+           if not (isinstance(a, np.ndarray) and a.ndim == 1 and a.dtype == np.float64)]
+    return f"arrays {', '.join(bad)}" if bad else None
+
+
+def _table_types(law):
+    """Refuse a table that is not a tuple of five 1-D float64 arrays (TypeError).
+
+    The plain-Python twin (``NUMBA_DISABLE_JIT=1``) of the compile-time check that the
+    ``overload`` below puts into every compiled caller: there a table of another type does
+    not compile (``TypingError`` with :data:`TABLE_TYPE_RULE`), so no other dtype or shape
+    reaches the kernels' arithmetic.
+    """
+    problem = table_type_problem(law)
+    if problem is not None:
+        raise TypeError(f"{TABLE_TYPE_RULE}; got {problem}")
+
+
+@overload(_table_types)
+def _table_types_typed(law):
+    if not (isinstance(law, types.BaseTuple) and len(law) == 5
+            and all(isinstance(a, types.Array) and a.ndim == 1 and a.dtype == types.float64
+                    for a in law.types)):
+        raise TypingError(f"{TABLE_TYPE_RULE}; got {law}")
+    return lambda law: None
 
 
 @njit_serial
@@ -73,7 +122,9 @@ def law_status(law: tuple) -> int:
     Parameters
     ----------
     law : tuple of five numpy.ndarray
-        ``ContactLaw.table``: ln u, ln p, d ln p/d ln u, ln K, d ln K/d ln u at the nodes.
+        ``ContactLaw.table``: ln u, ln p, d ln p/d ln u, ln K, d ln K/d ln u at the nodes,
+        each a 1-D float64 array (another type does not compile: numba raises a
+        ``TypingError`` that says so).
 
     Returns
     -------
@@ -84,11 +135,25 @@ def law_status(law: tuple) -> int:
     -----
     The rules: five arrays of one length n >= 2; v = ln u strictly increasing and y = ln p
     strictly decreasing, both within [LOG_LOW, LOG_HIGH] (logarithms of doubles); the slopes
-    dy < 0 and every value of z, dz finite; every interval monotone by the Fritsch-Carlson
-    condition the builder enforces, (dy_i^2 + dy_(i+1)^2) <= 9 secant_i^2 (with a relative
-    slack of ``MONOTONE_SLACK`` for rounding). Written without early exits (one pass, no
-    allocation); NaN fails every comparison.
+    dy < 0; z = ln K and dz = d ln K/d ln u finite; z tied to the others by the identity the
+    builder writes, ln(-dy) = v + z - y (d ln p/d ln u = -u K/p), to a relative slack of
+    ``IDENTITY_SLACK`` of 1 + |v| + |y| + |z|, at ``IDENTITY_NODES`` (5) nodes evenly
+    spread over the table, both ends included; every interval monotone by the
+    Fritsch-Carlson condition the builder enforces, (dy_i^2 + dy_(i+1)^2) <= 9 secant_i^2
+    (with a relative slack of ``MONOTONE_SLACK`` for rounding). Written without early exits
+    (one pass, no allocation); NaN fails every comparison.
+
+    So every permutation of the five arrays but the identity is refused: each moves an
+    array into one of the four slots of the identity, and the only exchange that keeps the
+    identity's value, ln u with ln K (v + z is symmetric), puts ln K where ln u must
+    increase, and K falls with u (K = p/u0 in the exponential tail the builder reaches).
+    What the check cannot see: a wrong ln K value at a node where the identity is not
+    checked; d ln K/d ln u enters no identity (a wrong dz array of finite values passes and
+    spoils K between nodes only); a table of another scene, a subset of a
+    table's nodes, or a consistent change of units (ln p and ln K shifted by one constant,
+    or ln u shifted and ln K shifted back) is a valid table of another law.
     """
+    _table_types(law)
     v, y, dy, z, dz = law
     n = v.shape[0]
     if (n < 2 or y.shape[0] != n or dy.shape[0] != n or z.shape[0] != n
@@ -105,6 +170,11 @@ def law_status(law: tuple) -> int:
         b = dy[i + 1]
         ok &= ((h > 0.0) & (d > 0.0) & (a < 0.0) & (abs(z[i]) < math.inf)
                & (abs(dz[i]) < math.inf) & ((a * a + b * b) * (h * h) <= bound * (d * d)))
+    for k in range(IDENTITY_NODES):
+        i = (k * (n - 1)) // (IDENTITY_NODES - 1)
+        # dy >= 0 or NaN: gap NaN; dy = -inf: gap inf; either fails
+        gap = math.log(-dy[i]) - (v[i] + z[i] - y[i]) if dy[i] < 0.0 else math.nan
+        ok &= abs(gap) <= IDENTITY_SLACK * (1.0 + abs(v[i]) + abs(y[i]) + abs(z[i]))
     return OK if ok else BAD_LAW
 
 

@@ -62,7 +62,8 @@ STATUS_MESSAGES = {
     BAD_LAW: ("the contact law's table must be the five arrays of ContactLaw.table (ln u, ln p, "
               "d ln p/d ln u, ln K, d ln K/d ln u), all of one length >= 2 and finite, ln u "
               "strictly increasing and ln p strictly decreasing within [-746, 710] (logarithms "
-              "of doubles), d ln p/d ln u < 0 and every interval monotone (Fritsch-Carlson: "
+              "of doubles), d ln p/d ln u < 0, ln K = ln p - ln u + ln(-d ln p/d ln u) (K = "
+              "-dp/du) and every interval monotone (Fritsch-Carlson: "
               "(s_i^2 + s_(i+1)^2) <= 9 secant^2); p, K and u are NaN (build it with "
               "contact_law, or read its to_csv columns back unchanged)"),
     SEPARATION_UNDERFLOW: ("the separation underflows double precision at this pressure (u or "

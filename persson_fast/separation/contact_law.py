@@ -10,8 +10,13 @@ Python.
 
 Every compiled function checks the table it is given before it reads it (the rules of
 :func:`persson_fast._kernels.contact_law.law_status`: five arrays of one length, ln u
-increasing, ln p decreasing, finite, every interval monotone): a table that is not one this
-module builds gives NaN and status ``BAD_LAW`` (21), never a number. The check is one pass
+increasing, ln p decreasing, finite, ln K = ln p - ln u + ln(-d ln p/d ln u), every interval
+monotone): a table that is not one this module builds gives NaN and status ``BAD_LAW`` (21),
+never a number; so does every swap or other permutation of the five arrays (a wrong
+d ln K/d ln u array alone, or a table of another scene, cannot be detected: the notes of
+``law_status``). The arrays must be 1-D float64: a table of another dtype (a float32 copy)
+does not compile (numba's ``TypingError`` says why) and :class:`ContactLaw`'s methods
+refuse it with a ValueError. The check is one pass
 over the nodes, so a call costs O(n) (184 nodes at rtol 1e-6 and 610 at 1e-8 on the
 self-affine scene of ``benchmarks/bench_separation.py``, ~1,700 at 1e-10): there a call took
 4-5x (rtol 1e-6) and 8x (1e-8) the time of the look-up alone (``test_law_call``, the
@@ -48,7 +53,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._io import write_text_atomic
-from .._kernels.contact_law import law_status, law_sweep, law_sweep_unchecked
+from .._kernels.contact_law import (TABLE_TYPE_RULE, law_status, law_sweep, law_sweep_unchecked,
+                                    table_type_problem)
 from .._kernels.status import BAD_LAW, BAD_SEPARATION, LAW_EXTRAPOLATED, OK, STATUS_MESSAGES
 from .._validation import as_float_array, check_finite, optional_import
 from ..scene import _check_rtol
@@ -70,7 +76,7 @@ class ContactLaw:
 
     Attributes
     ----------
-    table : tuple of five numpy.ndarray, shape (n,)
+    table : tuple of five numpy.ndarray of float64, shape (n,)
         (ln u ascending [ln m], ln p [ln Pa], d ln p/d ln u [-], ln K [ln Pa/m],
         d ln K/d ln u [-]): pass it to the compiled ``embed.law_*`` functions (which
         refuse, with NaN and ``BAD_LAW``, a table that breaks the rules of
@@ -118,7 +124,17 @@ class ContactLaw:
             p [Pa], K [Pa/m] and the status per value (0 ok, ``BAD_SEPARATION``,
             ``LAW_EXTRAPOLATED``; ``BAD_LAW`` everywhere when the table breaks a rule of
             ``law_status``), each of the shape of ``separation``.
+
+        Raises
+        ------
+        ValueError
+            If ``table`` is not a tuple of five 1-D float64 arrays (a float32 copy, say:
+            the compiled functions refuse it when they compile), or ``separation`` is not
+            real numbers.
         """
+        problem = table_type_problem(self.table)
+        if problem is not None:
+            raise ValueError(f"{TABLE_TYPE_RULE}; got {problem}")
         u = as_float_array(separation, "separation", "m")
         flat = np.ascontiguousarray(u.reshape(-1))
         p = np.empty(flat.size)
