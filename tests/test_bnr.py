@@ -3,6 +3,8 @@ its convergence order, the bookkeeping identities and the grid solver."""
 import numpy as np
 import pytest
 
+import persson_fast as pf
+
 from persson_fast._kernels import status as st
 from persson_fast._kernels.bnr import (
     bnr_sweep_parallel,
