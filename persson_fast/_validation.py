@@ -9,6 +9,7 @@ import numpy as np
 
 __all__ = [
     "as_float_array",
+    "check_not_bool",
     "check_finite",
     "check_positive",
     "check_nonnegative",
@@ -25,8 +26,49 @@ def _where(name: str, arr: np.ndarray, mask: np.ndarray) -> str:
     return f"{name}[{label}] = {arr[idx].item()!r}"
 
 
+def _bool_in(value, name: str):
+    """Where ``value`` holds a bool (Python's or NumPy's), as the words of an error message
+    (``"x = True"``, ``"x[1][0] = False"``, ``"x (an array of dtype bool, shape (3,))"``);
+    None where it holds none.
+
+    Array-likes (arrays, Series, anything with a ``dtype``) are judged by their dtype, an
+    object array element by element; lists and tuples, whose conversion loops over their
+    elements anyway, element by element, so that a bool among floats (``[1e5, True]``,
+    which NumPy converts to ``[1e5, 1.0]``) is found too."""
+    if isinstance(value, (bool, np.bool_)):
+        return f"{name} = {value!r}"
+    dtype = getattr(value, "dtype", None)
+    if dtype is not None:
+        kind = getattr(dtype, "kind", None)
+        if kind == "b":
+            return f"{name} (an array of dtype {dtype}, shape {np.shape(value)})"
+        if kind == "O" and isinstance(value, np.ndarray):
+            for idx, v in np.ndenumerate(value):
+                if isinstance(v, (bool, np.bool_)):
+                    return f"{name}[{','.join(str(i) for i in idx)}] = {v!r}"
+        return None
+    if isinstance(value, (list, tuple)):
+        for i, v in enumerate(value):
+            found = _bool_in(v, f"{name}[{i}]")
+            if found is not None:
+                return found
+    return None
+
+
+def check_not_bool(value, name: str, unit: str) -> None:
+    """Refuse a bool where a number is expected: ``True`` would otherwise be read as 1 (a
+    1 Pa hardness, a 1 m pixel) and ``False`` as 0. Python's and NumPy's bools, boolean
+    arrays and lists or tuples holding a bool are a ValueError naming ``name``."""
+    found = _bool_in(value, name)
+    if found is not None:
+        raise ValueError(f"{name} must be a real number or array of them [{unit}], not a "
+                         f"bool (True/False is not read as 1/0); got {found}")
+
+
 def as_float_array(value, name: str, unit: str, *, ndim: tuple[int, ...] | None = None) -> np.ndarray:
-    """Convert to a float64 array, rejecting non-numeric input with a clear message."""
+    """Convert to a float64 array, rejecting non-numeric input (bools included, see
+    :func:`check_not_bool`) with a clear message."""
+    check_not_bool(value, name, unit)
     try:
         arr = np.asarray(value, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -80,7 +122,7 @@ def check_nondecreasing(arr: np.ndarray, name: str, unit: str) -> None:
 
 
 def check_choice(value, name: str, choices) -> None:
-    if value not in choices:
+    if isinstance(value, (bool, np.bool_)) or value not in choices:
         valid = ", ".join(repr(c) for c in choices)
         raise ValueError(f"{name} must be one of {valid}; got {value!r}")
 
@@ -121,7 +163,8 @@ def check_n_damp(n_damp, default: int) -> int:
     """Damped (implicit-Euler) step pairs: an integer >= 0; None gives ``default``."""
     if n_damp is None:
         return default
-    if not isinstance(n_damp, (int, np.integer)) or n_damp < 0:
+    if isinstance(n_damp, (bool, np.bool_)) or not isinstance(n_damp, (int, np.integer)) \
+            or n_damp < 0:
         raise ValueError(f"n_damp must be an integer >= 0 [-]; got n_damp = {n_damp!r}")
     return int(n_damp)
 

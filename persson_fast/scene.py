@@ -12,7 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
+from ._validation import (as_float_array, check_finite, check_nonnegative, check_not_bool,
+                          check_positive)
 from .surfaces.models import E_STAR_WARN_BELOW, Surface, check_e_star
 
 __all__ = ["Scene", "DETACHMENT_PREFACTOR", "default_zeta", "ZETA_PER_DECADE"]
@@ -48,6 +49,7 @@ def default_zeta(surface: Surface, per_decade: int = ZETA_PER_DECADE) -> np.ndar
     numpy.ndarray
         Increasing magnifications from 1 to zeta1 = q1/q0 exactly. [-]
     """
+    check_not_bool(per_decade, "per_decade", "-")
     zeta1 = surface.q1 / surface.q0
     n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
     z = np.geomspace(1.0, zeta1, n)

@@ -138,8 +138,6 @@ def check_theory(theory, theory_gamma=None) -> tuple[str, float | None]:
         return theory, None
     if theory_gamma is None:
         return theory, DEFAULT_GAMMA[theory]
-    if isinstance(theory_gamma, (bool, np.bool_)):
-        raise ValueError(f"theory_gamma must be a real number [-]; got theory_gamma = {theory_gamma!r}")
     g_arr = as_float_array(theory_gamma, "theory_gamma", "-", ndim=(0,))
     check_finite(g_arr, "theory_gamma", "-")
     g = float(g_arr)

@@ -50,6 +50,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._validation import _bool_in, check_not_bool
+
 __all__ = ["WallSampling", "sample_wall", "check_wall_callable", "check_kinks",
            "CallableWallError"]
 
@@ -187,6 +189,10 @@ def _call(func, x: np.ndarray, name: str = "sigma_a") -> np.ndarray:
             f"calling it on an array of {x.size} diffusion times in [{x.min() if x.size else 0:.6g}, "
             f"{x.max() if x.size else 0:.6g}] Pa^2 raised {type(exc).__name__}: {exc}"
         ) from exc
+    found = _bool_in(y, f"{name}(G)")
+    if found is not None:
+        raise CallableWallError(f"{name}(G) must return real numbers [Pa], not bools "
+                                f"(True/False is not read as 1/0); got {found}")
     try:
         arr = np.asarray(y, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -218,6 +224,7 @@ def check_kinks(kinks, g_end: float) -> np.ndarray:
     """Declared kink times, sorted and unique, inside (0, g_end) [Pa^2]."""
     if kinks is None:
         return np.zeros(0)
+    check_not_bool(kinks, "kinks", "Pa^2")
     try:
         k = np.atleast_1d(np.asarray(kinks, dtype=np.float64))
     except (TypeError, ValueError) as exc:

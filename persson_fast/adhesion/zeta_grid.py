@@ -14,6 +14,8 @@ if TYPE_CHECKING:  # names of the type hints only
 
 import numpy as np
 
+from .._validation import check_not_bool
+
 __all__ = ["adhesion_zeta", "refine_zeta", "coarsen_zeta", "Onset", "onset_at", "onset_grid",
            "onset_coordinate"]
 
@@ -76,6 +78,9 @@ def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None =
     apart) left cells one ulp wide: dq = 0 once scaled to q, NaN weights on the refined grid
     and a wrong, flagged area (issue 12).
     """
+    for value, name in ((rtol, "rtol"), (per_decade, "per_decade"),
+                        (near_one_min, "near_one_min")):
+        check_not_bool(value, name, "-")
     if per_decade is None:
         per_decade = max(4, int(np.ceil(ZETA_PER_DECADE_ADHESION * (1e-6 / rtol) ** (1 / 3))))
     near_min = NEAR_ONE_MIN if near_one_min is None else float(near_one_min)

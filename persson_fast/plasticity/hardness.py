@@ -49,7 +49,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import as_float_array, check_finite
+from .._validation import _bool_in, as_float_array, check_finite
 from ..analytic.plastic import plastic_area
 from ..walls import CallableWallError
 
@@ -151,6 +151,11 @@ class CheckedHardness:
             raise CallableWallError(
                 f"{self.name} must be a vectorised callable zeta [-] -> sigma_Y [Pa]; calling "
                 f"it at {self._where(z)} raised {type(exc).__name__}: {exc}") from exc
+        found = _bool_in(out, f"{self.name}(zeta)")
+        if found is not None:
+            raise CallableWallError(
+                f"{self.name}(zeta) must return real numbers [Pa], not bools (True/False is "
+                f"not read as 1/0); got {found} at {self._where(z)}")
         try:
             arr = np.asarray(out, dtype=float)
         except (TypeError, ValueError) as exc:

@@ -124,7 +124,9 @@ def _check_values(name, values, unit="-"):
                          f"got shape {arr.shape}")
     if arr.size == 0:
         raise ValueError(f"{label} must hold at least one value; got an empty sequence")
-    if arr.dtype.kind in "iuf":
+    # a bool among numbers (NumPy turns [0.8, True] into [0.8, 1.0]) is passed on as given,
+    # for the surface's or the solve's own check to refuse (or a factory of the user's to take)
+    if arr.dtype.kind in "iuf" and not any(isinstance(v, (bool, np.bool_)) for v in raw):
         values_out = arr.tolist()
         finite = np.isfinite(arr.astype(float))
         if name in _NONE_ALLOWED:

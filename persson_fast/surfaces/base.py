@@ -21,8 +21,8 @@ import warnings
 import numpy as np
 
 from .._io import write_text_atomic
-from .._validation import (as_float_array, check_choice, check_finite, check_nonnegative, check_positive,
-                          check_whole_number)
+from .._validation import (as_float_array, check_choice, check_finite, check_nonnegative,
+                           check_not_bool, check_positive, check_whole_number)
 from .registry import SurfaceModel, register_surface_model
 
 __all__ = [
@@ -485,6 +485,7 @@ class Surface(abc.ABC):
         Comment lines give the surface's repr and the grid; the header is ``q [1/m],C [m^4]``;
         numbers are written with ``repr`` (they read back bit for bit).
         """
+        check_not_bool(points_per_decade, "points_per_decade", "-")
         return write_spectrum_csv(self, path, points_per_decade=points_per_decade)
 
     def elastic_energy_full_contact(self, e_star: float) -> float:

@@ -48,6 +48,7 @@ import math
 
 import numpy as np
 
+from .._validation import check_not_bool
 # the names of __all__ that live elsewhere, re-exported (persson_fast.surfaces.<name>)
 from .base import (BOLTZMANN, E_STAR_WARN_BELOW, RmsValue, Surface, _atan_ratio,
                            _check_band, _check_hurst, _gauss_legendre_log, _log1p_ratio,
@@ -430,6 +431,7 @@ def seed_e_star(poisson: float = SEED_POISSON) -> float:
     float
         E* = 2.9e9 / (1 - nu^2). [Pa]
     """
+    check_not_bool(poisson, "poisson", "-")
     nu = float(poisson)
     if not (math.isfinite(nu) and 0.0 <= nu <= 0.5):
         raise ValueError(f"poisson must lie in [0, 0.5] [-]; got poisson = {poisson!r}")

@@ -1,0 +1,236 @@
+"""Hostile input to the Python API (issue 42, items 6-8): bools where numbers are meant,
+empty and extreme arguments, contradictory options, and the gap distribution's adhesion
+keyword. Each test is one reproducer (or a family): a ValueError that names the argument,
+or a clean result.
+"""
+import re
+
+import numpy as np
+import pytest
+
+import persson_fast as pf
+from persson_fast import embed
+
+AFFINE = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e7, h_rms=1e-8)
+E_STAR = 1e9
+G = np.array([0.0, 1.0, 2.0, 4.0]) * 1e10
+HEIGHTS = np.random.default_rng(42).standard_normal((16, 16)) * 1e-9
+LINE = (np.array([1e4, 1e5, 1e6]), np.array([1e-30, 1e-33, 1e-36]))
+
+
+def _refuses_bool(call, name):
+    """``call()`` raises a ValueError that names ``name`` and says it got a bool."""
+    n = re.escape(name)
+    with pytest.raises(ValueError, match=rf"(?s)^{n}(?!\w).*not a bool.*got {n}(?!\w)") as info:
+        call()
+    return str(info.value)
+
+
+# every public numeric argument, given a bool: (label, call, the argument's name)
+BOOL_CASES = [
+    # solve_contact and pull_off: the issue's reproducers first
+    ("solve_contact hardness", lambda: pf.solve_contact(AFFINE, [1e5], e_star=E_STAR,
+                                                        hardness=True), "hardness"),
+    ("pull_off hardness", lambda: pf.pull_off(AFFINE, e_star=E_STAR, work_of_adhesion=0.05,
+                                              hardness=True), "hardness"),
+    ("solve_contact pressure", lambda: pf.solve_contact(AFFINE, True, e_star=E_STAR),
+     "pressure"),
+    ("solve_contact pressure list", lambda: pf.solve_contact(AFFINE, [1e5, True],
+                                                             e_star=E_STAR), "pressure"),
+    ("solve_contact pressure array", lambda: pf.solve_contact(
+        AFFINE, np.array([True, False]), e_star=E_STAR), "pressure"),
+    ("solve_contact e_star", lambda: pf.solve_contact(AFFINE, [1e5], e_star=True), "e_star"),
+    ("solve_contact work_of_adhesion", lambda: pf.solve_contact(
+        AFFINE, [1e5], e_star=E_STAR, work_of_adhesion=True), "work_of_adhesion"),
+    ("solve_contact work_of_adhesion False", lambda: pf.solve_contact(
+        AFFINE, [1e5], e_star=E_STAR, work_of_adhesion=np.False_), "work_of_adhesion"),
+    ("solve_contact energy_correction", lambda: pf.solve_contact(
+        AFFINE, [1e5], e_star=E_STAR, energy_correction=True), "energy_correction"),
+    ("solve_contact detachment_prefactor", lambda: pf.solve_contact(
+        AFFINE, [1e5], e_star=E_STAR, work_of_adhesion=0.05, detachment_prefactor=True),
+     "detachment_prefactor"),
+    ("solve_contact rtol", lambda: pf.solve_contact(AFFINE, [1e5], e_star=E_STAR, rtol=True),
+     "rtol"),
+    ("solve_contact zeta", lambda: pf.solve_contact(AFFINE, [1e5], e_star=E_STAR,
+                                                    zeta=[True, 1000.0]), "zeta"),
+    ("solve_contact theory_gamma", lambda: pf.solve_contact(
+        AFFINE, [1e5], e_star=E_STAR, theory="xu24", theory_gamma=True), "theory_gamma"),
+    ("solve_contact hardness table", lambda: pf.solve_contact(
+        AFFINE, [1e5], e_star=E_STAR, hardness=([1.0, 1000.0], [True, True])), "sigma_y"),
+    ("pull_off e_star", lambda: pf.pull_off(AFFINE, e_star=True, work_of_adhesion=0.05),
+     "e_star"),
+    ("pull_off work_of_adhesion", lambda: pf.pull_off(AFFINE, e_star=E_STAR,
+                                                      work_of_adhesion=True),
+     "work_of_adhesion"),
+    ("pull_off rtol", lambda: pf.pull_off(AFFINE, e_star=E_STAR, work_of_adhesion=0.05,
+                                          rtol=True), "rtol"),
+    ("Scene hardness", lambda: pf.Scene(AFFINE, E_STAR, hardness=True), "hardness"),
+    ("Scene e_star", lambda: pf.Scene(AFFINE, np.True_), "e_star"),
+    # solve_diffusion and the closed forms
+    ("solve_diffusion G", lambda: pf.solve_diffusion(G > 0, [1e5]), "G"),
+    ("solve_diffusion pressure", lambda: pf.solve_diffusion(G, True), "pressure"),
+    ("solve_diffusion sigma_a", lambda: pf.solve_diffusion(G, [1e5], True), "sigma_a"),
+    ("solve_diffusion sigma_y", lambda: pf.solve_diffusion(G, [1e5], sigma_y=True),
+     "sigma_y"),
+    ("solve_diffusion rtol", lambda: pf.solve_diffusion(G, [1e5], rtol=True), "rtol"),
+    ("contact_area_no_adhesion e_star", lambda: pf.contact_area_no_adhesion(
+        AFFINE, [1e5], True), "e_star"),
+    ("images_area pressure", lambda: pf.images_area(True, 1e10), "pressure"),
+    ("images_area G", lambda: pf.images_area(1e5, True), "G"),
+    ("images_density sigma", lambda: pf.images_density(True, 1e5, 1e10), "sigma"),
+    ("linear_boundary_area a", lambda: pf.linear_boundary_area(1e5, 1e10, True, 1e-6), "a"),
+    ("linear_boundary_area b", lambda: pf.linear_boundary_area(1e5, 1e10, 1e3, True), "b"),
+    ("plastic_area yield_stress", lambda: pf.plastic_area(1e5, 1e10, True), "yield_stress"),
+    # hardness helpers
+    ("hardness_power_law sigma_y0", lambda: pf.hardness_power_law(True, 0.5), "sigma_y0"),
+    ("hardness_power_law exponent", lambda: pf.hardness_power_law(1e9, True), "exponent"),
+    ("hardness_nix_gao h0", lambda: pf.hardness_nix_gao(True, 1e-6, 1e4), "h0"),
+    ("hardness_nix_gao length", lambda: pf.hardness_nix_gao(1e9, True, 1e4), "length"),
+    ("hardness_nix_gao q0", lambda: pf.hardness_nix_gao(1e9, 1e-6, True), "q0"),
+    ("hardness_table zeta", lambda: pf.hardness_table([1.0, True], [1e9, 1e9]), "zeta"),
+    ("hardness_table sigma_y", lambda: pf.hardness_table([1.0, 2.0], [1e9, True]),
+     "sigma_y"),
+    # surfaces
+    ("SelfAffine hurst", lambda: pf.SelfAffine(hurst=True, q0=1e4, q1=1e7, h_rms=1e-8),
+     "hurst"),
+    ("SelfAffine q0", lambda: pf.SelfAffine(hurst=0.8, q0=True, q1=1e7, h_rms=1e-8), "q0"),
+    ("SelfAffine h_rms", lambda: pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e7, h_rms=True),
+     "h_rms"),
+    ("CapillaryWaves temperature", lambda: pf.CapillaryWaves(True, 0.04, 1e9, 1e4, 1e9),
+     "temperature"),
+    ("CapillaryWaves density", lambda: pf.CapillaryWaves(370.0, 0.04, 1e9, 1e4, 1e9,
+                                                         density=True), "density"),
+    ("TabulatedPSD C", lambda: pf.TabulatedPSD(LINE[0], LINE[1] > 0), "C"),
+    ("from_heights heights", lambda: pf.TabulatedPSD.from_heights(HEIGHTS > 0, 1e-6),
+     "heights"),
+    ("from_heights heights list", lambda: pf.TabulatedPSD.from_heights(
+        [[True] * 8] * 8, 1e-6), "heights"),
+    ("from_heights pixel_size", lambda: pf.TabulatedPSD.from_heights(HEIGHTS, True),
+     "pixel_size"),
+    ("from_heights pixel_size pair", lambda: pf.TabulatedPSD.from_heights(
+        HEIGHTS, (1e-6, True)), "pixel_size"),
+    ("from_heights q0", lambda: pf.TabulatedPSD.from_heights(HEIGHTS, 1e-6, q0=True), "q0"),
+    ("from_heights hurst", lambda: pf.TabulatedPSD.from_heights(HEIGHTS[0], 1e-6,
+                                                                hurst=True), "hurst"),
+    ("from_line_scan C1d", lambda: pf.TabulatedPSD.from_line_scan(LINE[0], LINE[1] > 0, 0.8),
+     "C1d"),
+    ("from_line_scan hurst", lambda: pf.TabulatedPSD.from_line_scan(*LINE, True), "hurst"),
+    ("diffusion_time e_star", lambda: AFFINE.diffusion_time(1e5, True), "e_star"),
+    ("psd q", lambda: AFFINE.psd(True), "q"),
+    ("moment q_hi", lambda: AFFINE.moment(2, 1e4, True), "q_hi"),
+    ("seed_e_star poisson", lambda: pf.seed_e_star(True), "poisson"),
+    ("default_zeta per_decade", lambda: pf.default_zeta(AFFINE, True), "per_decade"),
+    ("adhesion_zeta rtol", lambda: pf.adhesion_zeta(AFFINE, True), "rtol"),
+    ("adhesion_zeta per_decade", lambda: pf.adhesion_zeta(AFFINE, per_decade=True),
+     "per_decade"),
+    ("adhesion_zeta near_one_min", lambda: pf.adhesion_zeta(AFFINE, near_one_min=True),
+     "near_one_min"),
+    # separation, gaps, embed
+    ("solve_separation pressure", lambda: pf.solve_separation(AFFINE, True, e_star=E_STAR),
+     "pressure"),
+    ("solve_separation energy_correction", lambda: pf.solve_separation(
+        AFFINE, 1e5, e_star=E_STAR, energy_correction=True), "energy_correction"),
+    ("pressure_at_separation separation", lambda: pf.pressure_at_separation(
+        AFFINE, True, e_star=E_STAR), "separation"),
+    ("pressure_at_separation rtol", lambda: pf.pressure_at_separation(
+        AFFINE, 1e-8, e_star=E_STAR, rtol=True), "rtol"),
+    ("decay_length e_star", lambda: pf.decay_length(AFFINE, e_star=True), "e_star"),
+    ("gap_distribution pressure", lambda: pf.gap_distribution(AFFINE, True, e_star=E_STAR),
+     "pressure"),
+    ("gap_distribution gaps", lambda: pf.gap_distribution(AFFINE, 1e5, e_star=E_STAR,
+                                                          gaps=[False, True]), "gaps"),
+    ("gap_distribution rtol", lambda: pf.gap_distribution(AFFINE, 1e5, e_star=E_STAR,
+                                                          rtol=True), "rtol"),
+    ("contact_law pressure_max", lambda: embed.contact_law(AFFINE, e_star=E_STAR,
+                                                           pressure_max=True),
+     "pressure_max"),
+    ("contact_law rtol", lambda: embed.contact_law(AFFINE, e_star=E_STAR, rtol=True), "rtol"),
+    ("adhesive_scene work_of_adhesion", lambda: embed.adhesive_scene(
+        AFFINE, e_star=E_STAR, work_of_adhesion=True), "work_of_adhesion"),
+    ("adhesive_scene rtol", lambda: embed.adhesive_scene(
+        AFFINE, e_star=E_STAR, work_of_adhesion=0.05, rtol=True), "rtol"),
+]
+
+
+@pytest.mark.parametrize("call, name", [c[1:] for c in BOOL_CASES],
+                         ids=[c[0] for c in BOOL_CASES])
+def test_bool_refused_naming_the_argument(call, name):
+    _refuses_bool(call, name)
+
+
+MORE_BOOL_CASES = [
+    ("to_csv points_per_decade", lambda: AFFINE.to_csv("unused.csv", points_per_decade=True),
+     "points_per_decade"),
+    ("solve_diffusion kinks (callable wall)", lambda: pf.solve_diffusion(
+        G, [1e5], sigma_a=lambda g: 0.0 * g, kinks=[True]), "kinks"),
+    ("scan params solve value", lambda: pf.scan(AFFINE, {"hardness": [3e7, True]}, [1e5],
+                                                e_star=E_STAR), "params['hardness'][1]"),
+    ("scan pressure", lambda: pf.scan(AFFINE, {}, [True], e_star=E_STAR), "pressure"),
+    ("scan hardness", lambda: pf.scan(AFFINE, {}, [1e5], e_star=E_STAR, hardness=True),
+     "hardness"),
+    ("scan gaps_rtol", lambda: pf.scan(AFFINE, {}, [1e5], e_star=E_STAR, gaps=True,
+                                       gaps_rtol=True), "gaps_rtol"),
+    ("GapDistribution.cumulative gaps", lambda: pf.gap_distribution(
+        AFFINE, 1e5, e_star=E_STAR).cumulative(np.array([True])), "gaps"),
+]
+
+
+@pytest.mark.parametrize("call, name", [c[1:] for c in MORE_BOOL_CASES],
+                         ids=[c[0] for c in MORE_BOOL_CASES])
+def test_bool_refused_more(call, name):
+    _refuses_bool(call, name)
+
+
+def test_scan_surface_parameter_bool_among_numbers_refused():
+    """[0.8, True] is not [0.8, 1.0]: the bool reaches the model, which refuses it."""
+    with pytest.raises(ValueError, match=r"^SelfAffine\(\.\.\.\) failed for the scene "
+                                         r"\(hurst=True\): hurst must be a real number or array "
+                                         r"of them \[-\], not a bool"):
+        pf.scan(pf.SelfAffine, {"hurst": [0.8, True], "q0": 1e4, "q1": 1e7, "h_rms": 1e-8},
+                [1e5], e_star=E_STAR)
+
+
+def test_counts_refuse_bool():
+    """Counts and choices that are integers refuse a bool too (True == 1 in Python)."""
+    with pytest.raises(ValueError, match=r"^k must be one of 0, 1, 2, 3; got True"):
+        AFFINE.moment(True)
+    with pytest.raises(ValueError, match=r"^n_damp must be an integer >= 0 \[-\]; got "
+                                         r"n_damp = True"):
+        pf.solve_diffusion(G, [1e5], n_damp=True)
+
+
+@pytest.mark.parametrize("wall", ["sigma_a", "sigma_y"])
+def test_callable_wall_returning_bools_refused(wall):
+    """A callable wall that returns bools would be a 1 Pa wall: refused, naming it."""
+    kwargs = {wall: lambda g: g >= 0.0}
+    with pytest.raises(ValueError, match=rf"^{wall}\(G\) must return real numbers \[Pa\], not "
+                                         rf"bools.*got {wall}\(G\) \(an array of dtype bool"):
+        pf.solve_diffusion(G, [1e5], **kwargs)
+
+
+def test_hardness_callable_returning_bools_refused():
+    with pytest.raises(ValueError, match=r"^hardness\(zeta\) must return real numbers \[Pa\], "
+                                         r"not bools.*dtype bool"):
+        pf.solve_contact(AFFINE, [1e5], e_star=E_STAR, hardness=lambda z: z > 0)
+
+
+def test_bool_array_refused_names_shape_and_dtype():
+    msg = _refuses_bool(lambda: pf.TabulatedPSD.from_heights(HEIGHTS > 0, 1e-6), "heights")
+    assert "(an array of dtype bool, shape (16, 16))" in msg
+    assert "[m]" in msg
+
+
+def test_bool_in_list_names_the_element():
+    msg = _refuses_bool(lambda: pf.solve_contact(AFFINE, [1e5, 2e5, np.True_],
+                                                 e_star=E_STAR), "pressure")
+    assert msg.endswith("got pressure[2] = np.True_") or msg.endswith("got pressure[2] = True")
+    assert "[Pa]" in msg
+
+
+def test_numbers_still_accepted_where_bools_are_refused():
+    """The refusal looks at bools only: ints, floats, float arrays and NumPy numbers pass."""
+    r = pf.solve_contact(AFFINE, [np.float32(1e5), 2e5, np.int64(300000)], e_star=int(E_STAR),
+                         hardness=np.float64(3e7))
+    assert r.success and r.pressure.tolist() == [1e5, 2e5, 3e5]
+    pf.TabulatedPSD.from_heights(HEIGHTS.astype(np.float32), 1e-6)
+    assert pf.seed_e_star(0) == pf.SEED_YOUNG_MODULUS
