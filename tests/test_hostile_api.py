@@ -141,6 +141,8 @@ BOOL_CASES = [
                                                           gaps=[False, True]), "gaps"),
     ("gap_distribution rtol", lambda: pf.gap_distribution(AFFINE, 1e5, e_star=E_STAR,
                                                           rtol=True), "rtol"),
+    ("gap_distribution work_of_adhesion", lambda: pf.gap_distribution(
+        AFFINE, 1e5, e_star=E_STAR, work_of_adhesion=True), "work_of_adhesion"),
     ("contact_law pressure_max", lambda: embed.contact_law(AFFINE, e_star=E_STAR,
                                                            pressure_max=True),
      "pressure_max"),
@@ -234,3 +236,42 @@ def test_numbers_still_accepted_where_bools_are_refused():
     assert r.success and r.pressure.tolist() == [1e5, 2e5, 3e5]
     pf.TabulatedPSD.from_heights(HEIGHTS.astype(np.float32), 1e-6)
     assert pf.seed_e_star(0) == pf.SEED_YOUNG_MODULUS
+
+
+# ---------------------------------------------------------------------------------------------
+# gap_distribution(work_of_adhesion=...) (item 8)
+# ---------------------------------------------------------------------------------------------
+GAPS_WHY = (r"^gap_distribution: work_of_adhesion must be 0 \[J/m\^2\]: the gap distribution is "
+            r"defined here for scenes without adhesion only; got work_of_adhesion = 0\.03\. ")
+
+
+def test_gap_distribution_refuses_positive_work_of_adhesion_saying_why():
+    with pytest.raises(ValueError, match=GAPS_WHY + r".*derived without adhesion"):
+        pf.gap_distribution(AFFINE, 1e5, e_star=E_STAR, work_of_adhesion=0.03)
+
+
+def test_gap_distribution_refuses_adhesive_scene_with_the_same_words():
+    with pytest.raises(ValueError, match=GAPS_WHY):
+        pf.gap_distribution(pf.Scene(AFFINE, E_STAR, work_of_adhesion=0.03), 1e5)
+    # a Scene and the keyword: the adhesion is the reason, not the clash of two records
+    with pytest.raises(ValueError, match=GAPS_WHY):
+        pf.gap_distribution(pf.Scene(AFFINE, E_STAR), 1e5, work_of_adhesion=0.03)
+
+
+@pytest.mark.parametrize("bad, rule", [(-0.03, r"must be >= 0 \[J/m\^2\]; got "
+                                                r"work_of_adhesion = -0\.03"),
+                                       (np.nan, r"must be finite \[J/m\^2\]"),
+                                       ("abc", r"must be a real number")])
+def test_gap_distribution_work_of_adhesion_bad_values(bad, rule):
+    with pytest.raises(ValueError, match=r"^work_of_adhesion " + rule):
+        pf.gap_distribution(AFFINE, 1e5, e_star=E_STAR, work_of_adhesion=bad)
+
+
+def test_gap_distribution_accepts_zero_work_of_adhesion_bitwise():
+    ref = pf.gap_distribution(AFFINE, [1e5, 1e6], e_star=E_STAR)
+    for zero in (0, 0.0, np.float64(0.0)):
+        g = pf.gap_distribution(AFFINE, [1e5, 1e6], e_star=E_STAR, work_of_adhesion=zero)
+        assert g.success
+        np.testing.assert_array_equal(g.gaps, ref.gaps)
+        np.testing.assert_array_equal(g.density, ref.density)
+        np.testing.assert_array_equal(g.mean, ref.mean)

@@ -331,16 +331,17 @@ def _gamma(energy_correction) -> float:
     return 1.0 if energy_correction is None else float(energy_correction)
 
 
-def _scene(surface, e_star, energy_correction, where: str):
-    """(surface, e_star, gamma_S) of a scene without adhesion; adhesion is refused."""
+def _scene(surface, e_star, energy_correction, where: str, refused: str | None = None):
+    """(surface, e_star, gamma_S) of a scene without adhesion; adhesion is refused with the
+    message ``refused`` (default ``ADHESION_REFUSED``; fields ``where`` and ``dg``)."""
     from ..plan import plan_scene
 
     surface, kw = unpack_scene(surface, {"e_star": e_star, "energy_correction": energy_correction},
                                where)
     plan = plan_scene(surface, kw)
     if plan.route != "elastic":          # a Scene's adhesion (hardness and theories are
-        raise ValueError(ADHESION_REFUSED.format(where=where,     # refused when unpacked)
-                                                 dg=plan.work_of_adhesion))
+        raise ValueError((refused or ADHESION_REFUSED).format(   # refused when unpacked)
+            where=where, dg=plan.work_of_adhesion))
     return surface, plan.e_star, _gamma(plan.energy_correction)
 
 
