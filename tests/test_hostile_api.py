@@ -10,6 +10,7 @@ import pytest
 
 import persson_fast as pf
 from persson_fast import embed
+from tolerances import IDENTITY
 
 AFFINE = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e7, h_rms=1e-8)
 E_STAR = 1e9
@@ -275,3 +276,115 @@ def test_gap_distribution_accepts_zero_work_of_adhesion_bitwise():
         np.testing.assert_array_equal(g.gaps, ref.gaps)
         np.testing.assert_array_equal(g.density, ref.density)
         np.testing.assert_array_equal(g.mean, ref.mean)
+
+
+# ---------------------------------------------------------------------------------------------
+# empty and extreme arguments, contradictory options (item 7, the API's parts)
+# ---------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("gaps", [None, [0.0, 1e-9, 2e-9]])
+def test_gap_distribution_of_no_pressure_is_an_empty_result(gaps):
+    """As solve_contact(S, []) and solve_separation(S, []): an empty result, not a NumPy
+    reduction error."""
+    g = pf.gap_distribution(AFFINE, [], e_star=E_STAR, gaps=gaps)
+    n = 0 if gaps is None else len(gaps)
+    assert g.success and g.message == "ok"
+    assert g.pressure.shape == (0,) and g.gaps.shape == (n,) and g.density.shape == (0, n)
+    for field in ("contact_fraction", "mean", "separation", "weight_error", "mean_error",
+                  "error_estimate", "status"):
+        assert getattr(g, field).shape == (0,), field
+    assert g.cumulative([0.0, 1e-9]).shape == (0, 2)
+    assert "pressure          0 values" in repr(g)
+    assert pf.solve_contact(AFFINE, [], e_star=E_STAR).area.shape == (0,)
+
+
+def test_gap_distribution_of_no_pressure_still_checks_its_arguments():
+    with pytest.raises(ValueError, match=r"^gaps must hold at least 2 values"):
+        pf.gap_distribution(AFFINE, [], e_star=E_STAR, gaps=[1e-9])
+    with pytest.raises(ValueError, match=r"^rtol must lie in"):
+        pf.gap_distribution(AFFINE, [], e_star=E_STAR, rtol=1.0)
+
+
+@pytest.mark.parametrize("p", [1e11, 1e154, 1e300, np.finfo(float).max])
+def test_gap_distribution_far_above_sqrt_g1_is_flagged_cleanly(p):
+    """1e300 Pa overflowed p * p in the lower end of the magnification cells ("cannot convert
+    float NaN to integer"); now it is what 1e11 was: full contact, flagged as an underflow
+    of the separation."""
+    from persson_fast._kernels.status import SEPARATION_UNDERFLOW
+
+    g = pf.gap_distribution(AFFINE, [1e5, p], e_star=E_STAR)
+    assert g.status.tolist() == [0, SEPARATION_UNDERFLOW]
+    assert not g.success and "underflows double precision" in g.message
+    assert g.contact_fraction[1] == 1.0 and g.mean[1] == 0.0
+    assert np.all(g.density[1] == 0.0)
+    assert np.all(np.isfinite(g.density))
+
+
+def test_gap_distribution_valid_pressure_unchanged_beside_a_huge_one():
+    """The fallback for p * p overflow touches only the pressures that overflow."""
+    alone = pf.gap_distribution(AFFINE, [1e5, 1e11], e_star=E_STAR)
+    huge = pf.gap_distribution(AFFINE, [1e5, 1e300], e_star=E_STAR)
+    np.testing.assert_array_equal(alone.gaps, huge.gaps)
+    np.testing.assert_array_equal(alone.density[0], huge.density[0])
+    assert alone.mean[0] == huge.mean[0]
+
+
+@pytest.mark.parametrize("pressure_max", [1e8, 1e20, 1e300])
+def test_contact_law_pressure_max_where_u_underflows_is_refused_with_the_limit(pressure_max):
+    from persson_fast.separation.elastic import nodes_for
+
+    with pytest.raises(ValueError, match=r"^pressure_max must be at most \S+ for this scene "
+                                         r"\[Pa\]: .*underflows double precision.*got "
+                                         rf"pressure_max = {re.escape(repr(pressure_max))}$"
+                       ) as info:
+        embed.contact_law(AFFINE, e_star=E_STAR, pressure_max=pressure_max)
+    limit = float(re.search(r"at most (\S+) for", str(info.value)).group(1))
+    # the limit it gives is one a table can be built to, and just above it u underflows
+    root_g1 = 0.5 / nodes_for(AFFINE, E_STAR).s_scale[0]
+    assert 10.0 * root_g1 < limit < 100.0 * root_g1
+    law = embed.contact_law(AFFINE, e_star=E_STAR, pressure_max=limit)
+    assert law.pressure_max == pytest.approx(limit, rel=IDENTITY)     # exp(ln p): rounding
+    assert np.all(law.separation > 0.0)
+    with pytest.raises(ValueError, match=r"^pressure_max must be at most"):
+        embed.contact_law(AFFINE, e_star=E_STAR, pressure_max=limit * 1.001)
+    assert "a bug" not in str(info.value)
+
+
+@pytest.mark.parametrize("pixel, got", [((1e-6,), "a sequence of 1 value: pixel_size = [1e-06]"),
+                                        ((1e-6, 1e-6, 1e-6), "a sequence of 3 values")])
+def test_from_heights_pixel_size_length_message_is_consistent(pixel, got):
+    """The message said 'must hold 1 or 2 value(s) ... got 1 values': now the rule it
+    states is the one the value breaks."""
+    with pytest.raises(ValueError, match=r"^pixel_size must be a number \(the same spacing "
+                                         r"along every axis\) or a sequence of 2 \(one per "
+                                         r"axis: \(dy, dx\)\) for 2-D heights \[m\]; got "
+                                         + re.escape(got)):
+        pf.TabulatedPSD.from_heights(HEIGHTS, pixel_size=pixel)
+    # the forms it names are accepted, and a scalar is the pair of equal spacings
+    a = pf.TabulatedPSD.from_heights(HEIGHTS, pixel_size=1e-6)
+    b = pf.TabulatedPSD.from_heights(HEIGHTS, pixel_size=(1e-6, 1e-6))
+    np.testing.assert_array_equal(a.C_table, b.C_table)
+
+
+SCAN_PARAMS = {"hurst": [0.8], "q0": 1e4, "q1": 1e7, "h_rms": 1e-8}
+
+
+@pytest.mark.parametrize("gaps", [False, np.False_])
+def test_scan_gaps_rtol_without_gaps_is_refused(gaps):
+    with pytest.raises(ValueError, match=r"^gaps_rtol is the tolerance of the gap "
+                                         r"distributions and needs gaps \(True or an array of "
+                                         r"gaps\) \[-\]; got gaps_rtol = 0\.0001 with gaps = "
+                                         r"(np\.)?False"):
+        pf.scan(pf.SelfAffine, SCAN_PARAMS, [1e5], e_star=E_STAR, gaps=gaps, gaps_rtol=1e-4)
+
+
+def test_scan_pull_off_rtol_without_pull_off_is_refused():
+    with pytest.raises(ValueError, match=r"^pull_off_rtol is the accuracy of the pull-off "
+                                         r"stress and needs pull_off=True \[-\]; got "
+                                         r"pull_off_rtol = 0\.001 with pull_off = False"):
+        pf.scan(pf.SelfAffine, SCAN_PARAMS, [1e5], e_star=E_STAR, pull_off_rtol=1e-3)
+
+
+def test_scan_gaps_rtol_with_gaps_is_taken():
+    ds = pf.scan(pf.SelfAffine, SCAN_PARAMS, [1e5], e_star=E_STAR, gaps=True, gaps_rtol=1e-2,
+                 workers=1)
+    assert ds.attrs["gaps_rtol"] == 1e-2

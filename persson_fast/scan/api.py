@@ -182,7 +182,8 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         False, where it raises; kept, with ``success`` False, where its error estimate
         exceeds ``pull_off_rtol``). [Pa]
     pull_off_rtol : float or None
-        Relative accuracy of the pull-off stress (default ``rtol``). [-]
+        Relative accuracy of the pull-off stress (default ``rtol``); only with
+        ``pull_off=True`` (otherwise a ValueError). [-]
     client : None, "local", str or dask.distributed.Client
         None: run here (threads). A Client: chunks of scenes become tasks on its cluster (the
         client stays open). ``"local"``: start a ``LocalCluster`` of single-threaded worker
@@ -231,7 +232,8 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         scenes' default grids, an array (increasing, >= 0) [m] is taken as it is. Scenes as for
         ``separation`` (otherwise a ValueError before anything is solved).
     gaps_rtol : float or None
-        Tolerance of the gap distributions (default 1e-3, that of gap_distribution). [-]
+        Tolerance of the gap distributions (default 1e-3, that of gap_distribution); only
+        with ``gaps`` (otherwise a ValueError). [-]
 
     Returns
     -------
@@ -323,12 +325,17 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
                          f"got method = {method!r}")
     rtol = _check_rtol(rtol)
     theories, theory_axis = _check_theories(theory, theory_gamma)
+    given_pull_off_rtol = pull_off_rtol
     pull_off_rtol = rtol if pull_off_rtol is None else _check_rtol(pull_off_rtol, "pull_off_rtol")
     p = _check_pressure(pressure)
     for name, flag in (("profiles", profiles), ("pull_off", pull_off),
                        ("separation", separation)):
         if not isinstance(flag, (bool, np.bool_)):
             raise ValueError(f"{name} must be True or False; got {name} = {flag!r}")
+    if given_pull_off_rtol is not None and not pull_off:
+        raise ValueError(f"pull_off_rtol is the accuracy of the pull-off stress and needs "
+                         f"pull_off=True [-]; got pull_off_rtol = {pull_off_rtol!r} with "
+                         f"pull_off = {pull_off!r}")
     chunks = _check_positive_int(chunks, "chunks")
     workers = _check_positive_int(workers, "workers")
     progress = _check_progress(progress)
@@ -363,6 +370,10 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
                          f"theory (persson01): the separation is not derived otherwise here; "
                          f"{which}")
     gap_grid = _check_gap_option(gaps)
+    if gaps_rtol is not None and gap_grid is False:
+        raise ValueError(f"gaps_rtol is the tolerance of the gap distributions and needs gaps "
+                         f"(True or an array of gaps) [-]; got gaps_rtol = {gaps_rtol!r} with "
+                         f"gaps = {gaps!r}")
     gaps_rtol = 1e-3 if gaps_rtol is None else _check_rtol(gaps_rtol, "gaps_rtol")
     if gap_grid is not False and (any(corrected) or any(adhesive) or any(yielding)):
         which = (f"theory = {grid.scenes[corrected.index(True)][2]['theory']!r}"

@@ -267,6 +267,36 @@ def _hermite_ok(u, y, dy) -> np.ndarray:
     return (a >= 0) & (b >= 0) & (a * a + b * b <= 9.0)
 
 
+def _separation_ok(nodes, gamma_s: float, p: float) -> bool:
+    """Whether u(p), Q = p/K and dQ/dp are representable at the pressure p [Pa] (status 0)."""
+    with np.errstate(all="ignore"):
+        *_, status = _evaluate(nodes, gamma_s, np.array([p]), slope=True)
+    return int(status[0]) == OK
+
+
+def _check_representable_top(nodes, gamma_s: float, p_hi: float, root_g1: float) -> None:
+    """Refuse a ``pressure_max`` [Pa] at which the separation underflows double precision
+    (u ~ exp(-p^2/(4 G1)) below ~1e-292 m, status ``SEPARATION_UNDERFLOW``): the table's
+    ln u would be -inf there. The message gives the largest pressure that is representable,
+    found by bisection in ln p above sqrt(G1) (where u is ~1e-1 of the roughness)."""
+    if _separation_ok(nodes, gamma_s, p_hi):
+        return
+    lo, hi = math.log(root_g1), math.log(p_hi)
+    if _separation_ok(nodes, gamma_s, root_g1):
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if _separation_ok(nodes, gamma_s, math.exp(mid)):
+                lo = mid
+            else:
+                hi = mid
+    limit = math.exp(lo)
+    raise ValueError(
+        f"pressure_max must be at most {limit!r} for this scene [Pa]: above it (about "
+        f"{limit / root_g1:.3g} sqrt(G1)) the mean separation u(p) ~ exp(-p^2/(4 G1)) "
+        f"underflows double precision (below ~1e-292 m: the surfaces are in full contact to "
+        f"rounding) and a table of ln u cannot reach it; got pressure_max = {p_hi!r}")
+
+
 def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
                 energy_correction: float | None = None, rtol: float = 1e-6,
                 pressure_max: float | None = None) -> ContactLaw:
@@ -283,7 +313,9 @@ def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
     rtol : float
         Relative accuracy of p and K between the nodes, in [1e-12, 0.1] (default 1e-6). [-]
     pressure_max : float or None
-        Upper end of the table; default 10 sqrt(G1) (u there is ~1e-11 of the roughness). [Pa]
+        Upper end of the table; default 10 sqrt(G1) (u there is ~1e-11 of the roughness).
+        At most the pressure where u(p) underflows double precision (about 50 sqrt(G1));
+        beyond it a ValueError gives that pressure. [Pa]
 
     Returns
     -------
@@ -311,6 +343,7 @@ def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
             raise ValueError(f"pressure_max must be > {10.0 * nodes.pressure_floor!r} Pa (ten "
                              f"times the smallest resolved pressure of this scene); got "
                              f"pressure_max = {p_hi!r}")
+        _check_representable_top(nodes, gamma_s, p_hi, root_g1)
     # the small-pressure end: where K u0 / p has converged to 1 within rtol / 8
     p_lo = min(1e-3 * root_g1, p_hi / 10.0)
     while True:

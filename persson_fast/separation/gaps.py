@@ -202,7 +202,9 @@ class GapDistribution:
         return (f"<GapDistribution ({self.shape}): success={self.success}, "
                 f"message={self.message!r}\n"
                 f"  pressure          {_span(self.pressure, 'Pa')}\n"
-                f"  gaps              {self.gaps.size} from 0 to {self.gaps[-1]:.4g} m\n"
+                f"  gaps              "
+                + (f"{self.gaps.size} from {self.gaps[0]:.4g} to {self.gaps[-1]:.4g} m\n"
+                   if self.gaps.size else "0 values\n") +
                 f"  contact_fraction  {_span(self.contact_fraction, '')}\n"
                 f"  mean              {_span(self.mean, 'm')}\n"
                 f"  timings: {_timings(self.timings)}>")
@@ -502,6 +504,16 @@ def gap_distribution(surface: Surface | Scene, pressure: ArrayLike, *,
                          f"adhesion, which is not derived here); got pressure[{i}] = "
                          f"{float(p[i])!r}")
     user_gaps = None if gaps is None else _check_gaps(gaps)
+    if p.size == 0:                  # as solve_contact and solve_separation: an empty result
+        u = np.zeros(0) if user_gaps is None else user_gaps
+        empty = np.zeros(0)
+        return GapDistribution(
+            pressure=p, gaps=u, density=np.zeros((0, u.size)), contact_fraction=empty,
+            mean=empty.copy(), separation=empty.copy(), weight_error=empty.copy(),
+            mean_error=empty.copy(), error_estimate=empty.copy(), shape=shape,
+            energy_correction=None if energy_correction is None else float(energy_correction),
+            status=np.zeros(0, dtype=np.int64), success=True, message="ok",
+            timings={"components": 0.0, "total": time.perf_counter() - t0}, _components=())
     code = GAP_SHAPES[shape]
     sep = solve_separation(surface, p, e_star=e, energy_correction=energy_correction)
     inverse = _Inverse(surface, e)
@@ -509,8 +521,11 @@ def gap_distribution(surface: Surface | Scene, pressure: ArrayLike, *,
     G1 = float(inverse.G[-1])
     s1 = p / (2.0 * math.sqrt(G1))
     positive = inverse.G[inverse.G > 0]
-    ln_lo = max(float(np.min(np.log(p * p / (4.0 * (s1 + S_MARGIN) ** 2)))),
-                math.log(positive[0]))
+    with np.errstate(over="ignore", invalid="ignore"):
+        ln_g = np.log(p * p / (4.0 * (s1 + S_MARGIN) ** 2))
+    # p beyond ~1e154 Pa overflows p * p (inf/inf): the same in logarithms
+    ln_g = np.where(np.isnan(ln_g), 2.0 * (np.log(p) - np.log(2.0 * (s1 + S_MARGIN))), ln_g)
+    ln_lo = max(float(np.min(ln_g)), math.log(positive[0]))
     ln_start = min(ln_lo, math.log(G1) - LN_G_STEP)
     contact = np.asarray([math.erf(x) for x in s1])
     step = LN_G_STEP

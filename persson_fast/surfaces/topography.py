@@ -107,8 +107,11 @@ def _pixel_sizes(pixel_size, ndim: int) -> tuple:
     if arr.ndim == 0:
         return (float(arr),) * ndim
     if arr.size != ndim:
-        raise ValueError(f"pixel_size must hold 1 or {ndim} value(s) for {ndim}-D heights [m]; "
-                         f"got {arr.size} values {arr.tolist()!r}")
+        rule = ("a number" if ndim == 1 else
+                f"a number (the same spacing along every axis) or a sequence of {ndim} "
+                f"(one per axis: (dy, dx)) for {ndim}-D heights")
+        raise ValueError(f"pixel_size must be {rule} [m]; got a sequence of {arr.size} "
+                         f"value{'' if arr.size == 1 else 's'}: pixel_size = {arr.tolist()!r}")
     return tuple(float(v) for v in arr)
 
 
