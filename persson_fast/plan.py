@@ -15,8 +15,10 @@ solves their composition (:data:`ROUTES`: a closed form where one exists, else t
 that carries those walls, inside the adhesive fixed point where there is adhesion). Every
 combination that is refused is one row of :data:`REFUSALS`, with its reason; the entry
 points' docstrings and the command line's help take their words from it
-(:func:`refusals_text`). A new piece of physics is a field of :class:`Plan`, a new route a
-row of :data:`ROUTES`, a new refusal a row of :data:`REFUSALS`.
+(:func:`refusals_text`). The pieces are read by
+:func:`persson_fast.scene.plan_scene` into a :class:`persson_fast.scene.Plan`, which every
+entry point shares. A new piece of physics is a field of that Plan, a new route a row of
+:data:`ROUTES`, a new refusal a row of :data:`REFUSALS`.
 """
 from __future__ import annotations
 
@@ -27,10 +29,9 @@ import numpy as np
 
 from .methods import check_method
 from .results import summarize_status
-from .scene import DETACHMENT_PREFACTOR, _check_scene_args, unpack_scene
-from .theories import check_theory, check_theory_scene
+from .scene import Plan, plan_scene, unpack_scene
 
-__all__ = ["Plan", "ROUTES", "REFUSALS", "plan_contact", "plan_scene", "check_composition", "refusal_reasons", "refusals_text",
+__all__ = ["ROUTES", "REFUSALS", "plan_contact", "refusal_reasons", "refusals_text",
            "finish_contact"]
 
 
@@ -89,52 +90,6 @@ _SEPARATION_REFUSED = {
 }
 
 
-@dataclass(frozen=True)
-class Plan:
-    """A checked scene: its pieces and the route that solves their composition.
-
-    Attributes
-    ----------
-    surface : Surface -- the roughness.
-    e_star, work_of_adhesion, detachment_prefactor : float -- checked scene values (SI).
-    energy_correction : float or None -- gamma_S of S, or None (S = 1).
-    theory : str -- the time of the diffusion ("persson01", "yp08", "wm17", "xu24").
-    theory_gamma : float or None -- the corrected theory's gamma.
-    hardness : object or None -- the checked yield wall (None: no upper wall).
-    method : str -- the method asked for.
-    """
-    surface: object
-    e_star: float
-    work_of_adhesion: float
-    detachment_prefactor: float
-    energy_correction: float | None
-    theory: str
-    theory_gamma: float | None
-    hardness: object
-    method: str
-
-    @property
-    def lower_wall(self) -> str:
-        """"adhesion" (the detachment wall) or "none"."""
-        return "adhesion" if self.work_of_adhesion > 0 else "none"
-
-    @property
-    def upper_wall(self) -> str:
-        """"none", or "yield" (the hardness)."""
-        return "none" if self.hardness is None else "yield"
-
-    @property
-    def route(self) -> str:
-        """The key of :data:`ROUTES` that solves this composition."""
-        corrected = self.theory != "persson01"
-        if self.upper_wall == "yield":
-            return ("two-wall-fixed-point" if self.lower_wall == "adhesion" or corrected
-                    else "yield")
-        if self.lower_wall == "adhesion":
-            return "adhesive-fixed-point"
-        return "theory" if corrected else "elastic"
-
-
 def plan_contact(where: str, surface, given: dict, *, method: str, theory: str,
                  theory_gamma, check_extra: Callable[[], object] | None = None) -> Plan:
     """Check a scene and its method once; the :class:`Plan` that solves it.
@@ -164,37 +119,6 @@ def plan_contact(where: str, surface, given: dict, *, method: str, theory: str,
         if refusal.applies(plan):
             raise ValueError(refusal.message(plan))
     return plan
-
-
-def plan_scene(surface, kw: dict, *, theory: str = "persson01", theory_gamma=None,
-               method: str = "auto") -> Plan:
-    """The :class:`Plan` of an unpacked scene (``kw``: e_star, work_of_adhesion,
-    energy_correction, detachment_prefactor and optionally hardness, as given): the scene's
-    values checked, the theory checked against the walls it must carry
-    (:func:`check_composition`). Every entry point reads its scene through here:
-    :func:`plan_contact` (solve_contact), pull_off, solve_separation, gap_distribution and
-    the contact law (which refuse every route but "elastic")."""
-    from .plasticity.hardness import check_hardness
-
-    e, dg, beta = _check_scene_args(surface, kw["e_star"], kw.get("work_of_adhesion", 0.0),
-                                    kw.get("detachment_prefactor", DETACHMENT_PREFACTOR),
-                                    kw.get("energy_correction"))
-    theory, theory_gamma = check_theory(theory, theory_gamma)
-    hardness = kw.get("hardness")
-    check_composition(theory, float(dg), hardness)
-    if hardness is not None:
-        hardness = check_hardness(hardness, scale_dependent=True)
-    return Plan(surface=surface, e_star=e, work_of_adhesion=dg,
-                detachment_prefactor=float(beta), energy_correction=kw.get("energy_correction"),
-                theory=theory, theory_gamma=theory_gamma, hardness=hardness, method=method)
-
-
-def check_composition(theory: str, work_of_adhesion: float, hardness=None) -> None:
-    """Refuse a time law that cannot carry the scene's walls (xu24 with adhesion or a yield
-    wall): the first row of the refused combinations, shared by every entry point and by
-    each scene of a scan."""
-    if theory != "persson01":
-        check_theory_scene(theory, float(work_of_adhesion), hardness)
 
 
 def refusal_reasons() -> list[str]:

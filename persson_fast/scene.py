@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .theories import check_theory, check_theory_scene
 from ._validation import (as_float_array, check_finite, check_nonnegative, check_not_bool,
                           check_positive)
 from .surfaces.models import E_STAR_WARN_BELOW, Surface, check_e_star
@@ -307,3 +308,80 @@ def _is_default(key, value) -> bool:
         return value == default
     except Exception:  # noqa: BLE001 -- an array or odd object is not the default
         return False
+
+
+@dataclass(frozen=True)
+class Plan:
+    """A checked scene: its pieces and the route that solves their composition.
+
+    Attributes
+    ----------
+    surface : Surface -- the roughness.
+    e_star, work_of_adhesion, detachment_prefactor : float -- checked scene values (SI).
+    energy_correction : float or None -- gamma_S of S, or None (S = 1).
+    theory : str -- the time of the diffusion ("persson01", "yp08", "wm17", "xu24").
+    theory_gamma : float or None -- the corrected theory's gamma.
+    hardness : object or None -- the checked yield wall (None: no upper wall).
+    method : str -- the method asked for.
+    """
+    surface: object
+    e_star: float
+    work_of_adhesion: float
+    detachment_prefactor: float
+    energy_correction: float | None
+    theory: str
+    theory_gamma: float | None
+    hardness: object
+    method: str
+
+    @property
+    def lower_wall(self) -> str:
+        """"adhesion" (the detachment wall) or "none"."""
+        return "adhesion" if self.work_of_adhesion > 0 else "none"
+
+    @property
+    def upper_wall(self) -> str:
+        """"none", or "yield" (the hardness)."""
+        return "none" if self.hardness is None else "yield"
+
+    @property
+    def route(self) -> str:
+        """The key of :data:`persson_fast.plan.ROUTES` that solves this composition."""
+        corrected = self.theory != "persson01"
+        if self.upper_wall == "yield":
+            return ("two-wall-fixed-point" if self.lower_wall == "adhesion" or corrected
+                    else "yield")
+        if self.lower_wall == "adhesion":
+            return "adhesive-fixed-point"
+        return "theory" if corrected else "elastic"
+
+
+def plan_scene(surface, kw: dict, *, theory: str = "persson01", theory_gamma=None,
+               method: str = "auto") -> Plan:
+    """The :class:`Plan` of an unpacked scene (``kw``: e_star, work_of_adhesion,
+    energy_correction, detachment_prefactor and optionally hardness, as given): the scene's
+    values checked, the theory checked against the walls it must carry
+    (:func:`check_composition`). Every entry point reads its scene through here:
+    :func:`persson_fast.plan.plan_contact` (solve_contact), pull_off, solve_separation, gap_distribution and
+    the contact law (which refuse every route but "elastic")."""
+    from .plasticity.hardness import check_hardness
+
+    e, dg, beta = _check_scene_args(surface, kw["e_star"], kw.get("work_of_adhesion", 0.0),
+                                    kw.get("detachment_prefactor", DETACHMENT_PREFACTOR),
+                                    kw.get("energy_correction"))
+    theory, theory_gamma = check_theory(theory, theory_gamma)
+    hardness = kw.get("hardness")
+    check_composition(theory, float(dg), hardness)
+    if hardness is not None:
+        hardness = check_hardness(hardness, scale_dependent=True)
+    return Plan(surface=surface, e_star=e, work_of_adhesion=dg,
+                detachment_prefactor=float(beta), energy_correction=kw.get("energy_correction"),
+                theory=theory, theory_gamma=theory_gamma, hardness=hardness, method=method)
+
+
+def check_composition(theory: str, work_of_adhesion: float, hardness=None) -> None:
+    """Refuse a time law that cannot carry the scene's walls (xu24 with adhesion or a yield
+    wall): the first row of the refused combinations, shared by every entry point and by
+    each scene of a scan."""
+    if theory != "persson01":
+        check_theory_scene(theory, float(work_of_adhesion), hardness)

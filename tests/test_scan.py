@@ -17,7 +17,7 @@ distributed = pytest.importorskip("distributed")
 from persson_fast.scan.api import scan  # noqa: E402  (after the optional-dependency skips)
 
 # the module itself (``persson_fast.scan`` may be shadowed by the function in the package)
-scan_module = importlib.import_module("persson_fast.scan")
+scan_module = importlib.import_module("persson_fast.scan.run")
 #: where a scan's scenes are solved (the names a test patches: solve_contact, _pull_off,
 #: _stderr_is_terminal are looked up there)
 scan_run = importlib.import_module("persson_fast.scan.run")

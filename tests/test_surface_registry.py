@@ -16,7 +16,7 @@ from persson_fast.surfaces.models import (SURFACE_MODELS, Parameter, SurfaceMode
                                    register_surface_model)
 
 #: the module (``pf.scan`` is the function)
-scan_module = importlib.import_module("persson_fast.scan")
+scan_module = importlib.import_module("persson_fast.scan.grid")
 #: the command line and scan, with the modules their code lives in
 ENTRY_MODULES = ("persson_fast.cli", "persson_fast.cli.parser", "persson_fast.cli.config",
                  "persson_fast.cli.output", "persson_fast.scan", "persson_fast.scan.grid",

@@ -367,8 +367,7 @@ def _pull_off(surface, *, e_star, work_of_adhesion, energy_correction=None,
     warning's text or None. Thread-safe (no warning filters touched), for callers that
     record ``info["converged"]`` themselves (:func:`persson_fast.api._flag_lost_contact`).
     """
-    from ..plan import plan_scene
-    from ..scene import _check_rtol, _check_zeta
+    from ..scene import _check_rtol, _check_zeta, plan_scene
 
     t_start = time.perf_counter()
     rtol = _check_rtol(rtol)

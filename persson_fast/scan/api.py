@@ -80,7 +80,7 @@ import numpy as np
 
 from .._validation import optional_import
 from ..scene import DETACHMENT_PREFACTOR, Scene, _check_rtol, unpack_scene
-from ..plan import check_composition
+from ..scene import check_composition
 from ..methods import METHODS
 from .grid import (PARAMETER_UNITS, SOLVE_PARAMETERS, ZETA1_RTOL, _check_positive_int,
                         _check_pressure, _check_progress, _check_theories, _check_zeta, _Grid,

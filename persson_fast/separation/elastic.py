@@ -334,7 +334,7 @@ def _gamma(energy_correction) -> float:
 def _scene(surface, e_star, energy_correction, where: str, refused: str | None = None):
     """(surface, e_star, gamma_S) of a scene without adhesion; adhesion is refused with the
     message ``refused`` (default ``ADHESION_REFUSED``; fields ``where`` and ``dg``)."""
-    from ..plan import plan_scene
+    from ..scene import plan_scene
 
     surface, kw = unpack_scene(surface, {"e_star": e_star, "energy_correction": energy_correction},
                                where)
