@@ -33,11 +33,11 @@ from .scene import DETACHMENT_PREFACTOR
 H0 = 0.12
 N_ZETA = 8.0
 N_G = 2.5
-ONSET_M = 4
+ONSET_M = 16
 M_START = 4
 M_PRE = 2
 RES_ORDER = 3.0
-N_DAMP = 2
+N_DAMP = 0
 #: the root at each level stops when the bracket's two end areas differ by at most this
 #: fraction of rtol A
 ROOT_TOL = 1e-3
@@ -197,7 +197,7 @@ def _solve_root(level, pts, tol_rel, k_min, k_max, max_iter=60):
 
 def resolution(rtol):
     f = (rtol / 1e-6) ** (1.0 / RES_ORDER)
-    return H0 * f, N_ZETA / f, N_G / f
+    return min(H0 * f, 0.2), max(N_ZETA / f, 4.0), max(N_G / f, 1.0)
 
 
 def solve_march(surface, pressure, *, e_star, work_of_adhesion, rtol=1e-6,
