@@ -6,7 +6,7 @@ seconds raised KeyboardInterrupt inside the import, before any code of the comma
 catch it, and Python printed a traceback. The console script imports this module instead:
 it imports nothing of weight itself, and it turns a Ctrl-C at any moment -- while the
 package is imported, while the command runs, while it exits -- into the one answer
-:func:`persson_fast.cli.main` gives once it runs: ``interrupted`` on stderr and exit code
+:func:`persson_fast.cli.main.main` gives once it runs: ``interrupted`` on stderr and exit code
 130. ``import persson_fast`` and ``python -m persson_fast.cli`` are not affected.
 """
 import sys
@@ -32,9 +32,9 @@ def _interrupted() -> None:
 
 def run() -> None:
     """The ``persson-fast`` console script: import the package, then run
-    :func:`persson_fast.cli.run` (which exits with the command's code)."""
+    :func:`persson_fast.cli.main.run` (which exits with the command's code)."""
     try:
-        from persson_fast.cli import run as run_command
+        from persson_fast.cli.main import run as run_command
 
         run_command()
     except KeyboardInterrupt:

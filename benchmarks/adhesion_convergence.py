@@ -14,8 +14,9 @@ from __future__ import annotations
 import numpy as np
 
 import persson_fast as pf
-from persson_fast.adhesion import _controls, _run, _scene_arrays, adhesion_zeta
-from persson_fast.adhesion import solve_adhesive_contact
+from persson_fast.adhesion.runner import _controls, _run
+from persson_fast.adhesion.zeta_grid import _scene_arrays, adhesion_zeta
+from persson_fast.adhesion.fixed_point import solve_adhesive_contact
 
 E_STAR = pf.seed_e_star()
 DGAMMA = pf.SEED_WORK_OF_ADHESION

@@ -17,7 +17,8 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast.adhesion import adhesion_zeta, solve_adhesive_contact
+from persson_fast.adhesion.zeta_grid import adhesion_zeta
+from persson_fast.adhesion.fixed_point import solve_adhesive_contact
 
 SEED_E_STAR = pf.seed_e_star()
 DGAMMA = pf.SEED_WORK_OF_ADHESION

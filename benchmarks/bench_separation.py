@@ -29,7 +29,7 @@ import pytest
 
 import persson_fast as pf
 from persson_fast import embed
-from persson_fast._reference_separation import separation_quad, stiffness_quad
+from persson_fast._reference.separation import separation_quad, stiffness_quad
 
 E_STAR = 1e9
 SURFACE = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)

@@ -17,7 +17,7 @@ Cases (``parallel=False`` everywhere):
 * ``test_cn_selfaffine_64`` -- ``solve_contact(method="cn", rtol=1e-6)`` on the table's
   5-decade self-affine scene (``benchmarks/cases.py``, 64 pressures); error against the
   exact area erf(p / (2 sqrt G)) at every zeta of the default grid;
-* ``test_numpy_cn_selfaffine`` -- :func:`persson_fast._reference.cn_baseline` (the
+* ``test_numpy_cn_selfaffine`` -- :func:`persson_fast._reference.diffusion.cn_baseline` (the
   Crank-Nicolson a user would write with NumPy/SciPy) on 4 of those pressures, 1600 nodes and
   200 steps per decade. It cannot reach cn's error: the uniform grid does not resolve the
   small pressures at all (error 1 at p = 1e-3 sqrt(G1)), and its best pressure is still
@@ -37,7 +37,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast._reference import cn_baseline
+from persson_fast._reference.diffusion import cn_baseline
 
 from benchmarks.cases import get_case
 

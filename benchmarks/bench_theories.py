@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast._reference_theories import reference_area, stepped_area
+from persson_fast._reference.theories import reference_area, stepped_area
 
 THEORIES = ("yp08", "wm17", "xu24")
 E_STAR = 1.0e9

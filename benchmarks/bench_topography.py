@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast.topography import synthesize_heights
+from persson_fast.surfaces.synthetic import synthesize_heights
 
 N = 1024
 PIXEL = 1e-6 / N          # a 1 um map [m]

@@ -9,7 +9,7 @@ Run::
 Scene: two walls translating together at physical scales, sigma_a = a - b G (detachment) and
 sigma_Y = Y + b G (yield), a = 20 MPa, Y = 280 MPa, b W = 2 (W = a + Y), G on 60 log-spaced
 points from 1e-4 W^2 to 1.5 W^2, 16 pressures from 0.05 Y to 0.9 Y; the exact answer is the
-strip's sine series (persson_fast._reference_yield.translating_walls). Cases (one thread):
+strip's sine series (persson_fast._reference.yield_wall.translating_walls). Cases (one thread):
 
 * ``test_one_wall_cn`` -- the detachment wall alone, "cn" at rtol 1e-6 (the cost without the
   second wall; error against the moving-wall closed form);
@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast._reference_yield import translating_walls, two_wall_reference
+from persson_fast._reference.yield_wall import translating_walls, two_wall_reference
 
 A, Y = 2e7, 2.8e8
 W = A + Y

@@ -24,7 +24,7 @@ gamma_eff changes sign, against the fine-grid reference of
 ``tests/test_adhesive_error_control.py``. A third (:func:`random_wall_stats`) runs every
 method and ``auto`` on random kinked walls (``benchmarks/random_walls.py``, ``--walls N``, as
 samples and as callables, rtol 1e-4 ... 1e-8) against the kink-to-kink quadrature of
-:mod:`persson_fast._reference_walls`: per method and rtol the share of flagged results, how
+:mod:`persson_fast._reference.walls`: per method and rtol the share of flagged results, how
 many of the flags were in fact within rtol, the silent misses and the least estimate/error.
 The file is written atomically (a temporary file in
 the same folder, then ``os.replace``).
@@ -308,7 +308,7 @@ def random_wall_stats(n_walls, rtols, methods, first_seed=0):
     within rtol, silent misses (status 0 outside rtol), NaN results, refusals, the least
     estimate/error over the returned G where the error is above 0.2 of the tolerance and
     ten times the reference's uncertainty, and the total solve time; plus the list of the
-    misses. The reference is the kink-to-kink quadrature of persson_fast._reference_walls."""
+    misses. The reference is the kink-to-kink quadrature of persson_fast._reference.walls."""
     from benchmarks.random_walls import walls
 
     ws = walls(n_walls, first_seed)
@@ -485,7 +485,7 @@ def main(argv=None) -> int:
              "pressures and stress scales; output times at the breakpoints, the midpoints and an "
              "eighth into each piece), each as samples and as a callable (np.interp of the "
              "breakpoints, kinks not declared), so 2 probes per wall, method and rtol, "
-             f"against `persson_fast._reference_walls` (the exact linear-wall kernel carried "
+             f"against `persson_fast._reference.walls` (the exact linear-wall kernel carried "
              "from kink to kink by Gauss-Legendre quadrature, NumPy/SciPy only; its uncertainty, "
              "from panels twice as wide, below 1e-11 relative). flagged = status != 0, with how "
              "many of those were in fact within rtol; MISS = status 0 outside rtol at some "

@@ -9,7 +9,7 @@ points an eighth into each piece (just after a kink, where the errors of a kinke
 peak). Each wall is solved as samples on the output times (which hold the breakpoints) and as
 a callable (``np.interp`` of the breakpoints: the adaptive sampling must find the kinks).
 
-The reference is :func:`persson_fast._reference_walls.piecewise_linear_area` (the exact
+The reference is :func:`persson_fast._reference.walls.piecewise_linear_area` (the exact
 linear-wall kernel carried from kink to kink by Gauss-Legendre quadrature, NumPy/SciPy only),
 checked against itself on panels twice as wide; its uncertainty is that difference plus a
 rounding floor.
@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from persson_fast._reference_walls import piecewise_linear_area
+from persson_fast._reference.walls import piecewise_linear_area
 
 #: least length of a piece, relative to G_end (the reference's panels follow the shortest) [-]
 MIN_PIECE = 0.03

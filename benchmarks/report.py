@@ -14,7 +14,7 @@ level halves the node spacing and the step), on three scenes:
   converged fixed point at the finest tolerance, with its own error estimate;
 
 it measures the error and the time per pressure (one thread), the ratio to the NumPy/SciPy
-Crank-Nicolson baseline at equal error (:func:`persson_fast._reference.cn_baseline`, same
+Crank-Nicolson baseline at equal error (:func:`persson_fast._reference.diffusion.cn_baseline`, same
 run), the convergence order, the cheapest method per tolerance (what ``method="auto"``
 should take), the thread scaling of a 1000-pressure sweep, the compile time cold and cached,
 and the cost per pressure x node x step. It writes ``benchmarks/RESULTS.md``,
@@ -39,7 +39,7 @@ import numpy as np
 import scipy
 
 import persson_fast as pf
-from persson_fast._reference import cn_baseline
+from persson_fast._reference.diffusion import cn_baseline
 from persson_fast.methods import AUTO_POLICY, METHODS
 
 HERE = Path(__file__).resolve().parent

@@ -30,7 +30,7 @@ import time
 import numpy as np
 
 import persson_fast as pf
-from persson_fast.scan import scan
+from persson_fast.scan.api import scan
 
 #: E* of the seed's PMMA [Pa] and its work of adhesion [J/m^2]
 E_STAR = pf.seed_e_star()

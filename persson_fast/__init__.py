@@ -4,24 +4,17 @@ The stress distribution P(sigma, zeta) obeys a diffusion equation in magnificati
 absorbing wall at -sigma_a(zeta); the real contact area is A(zeta1)/A0. See the README for the
 conventions (SI units, Persson's isotropic PSD convention).
 """
-from .analytic import (
-    contact_area_no_adhesion,
-    images_area,
-    images_density,
-    images_moments,
-    linear_boundary_area,
-    linear_boundary_density,
-    linear_boundary_detachment_rate,
-    linear_boundary_load,
-    plastic_area,
-)
-from .adhesion import adhesion_zeta
-from .pulloff import pull_off
+from .analytic.images import contact_area_no_adhesion, images_area, images_density, images_moments
+from .analytic.linear import (linear_boundary_area, linear_boundary_density,
+                              linear_boundary_detachment_rate, linear_boundary_load)
+from .analytic.plastic import plastic_area
+from .adhesion.zeta_grid import adhesion_zeta
+from .adhesion.pulloff import pull_off
 from ._version import __version__
 from .api import default_zeta, solve_contact, solve_diffusion, warmup
 from .methods import AUTO_POLICY, METHODS
 from .results import ContactResult, DiffusionResult
-from .surfaces import (
+from .surfaces.models import (
     BOLTZMANN,
     SEED_POISSON,
     SEED_WORK_OF_ADHESION,
@@ -33,12 +26,12 @@ from .surfaces import (
     seed_e_star,
     seed_scene,
 )
-from .plasticity import hardness_nix_gao, hardness_power_law, hardness_table
-from .scan import ScanWarning, scan
+from .plasticity.hardness import hardness_nix_gao, hardness_power_law, hardness_table
+from .scan.api import ScanWarning, scan
 from .scene import Scene
-from .separation import (SeparationResult, decay_length, pressure_at_separation,
+from .separation.elastic import (SeparationResult, decay_length, pressure_at_separation,
                          solve_separation)
-from .gaps import GapDistribution, gap_distribution
+from .separation.gaps import GapDistribution, gap_distribution
 
 
 __all__ = [
@@ -85,3 +78,8 @@ __all__ = [
     "gap_distribution",
     "__version__",
 ]
+
+from . import _compat
+
+_compat.install()      # old module paths of pickles from 0.1.x
+del _compat

@@ -9,7 +9,7 @@ if TYPE_CHECKING:  # names of the type hints only
     from numpy.typing import ArrayLike
     
     from .scene import Scene
-    from .surface_base import Surface
+    from .surfaces.base import Surface
 
 import functools
 import time
@@ -17,30 +17,30 @@ from dataclasses import replace
 
 import numpy as np
 
-from . import analytic
-from ._kernels.status import GRID_CAP, LOST_CONTACT, RTOL_NOT_MET
+from .analytic.images import _images_area_at, images_area
+from .analytic.linear import linear_boundary_area, linear_boundary_load
+from ._kernels.status import GRID_CAP, RTOL_NOT_MET
 from ._validation import (as_float_array, check_finite, check_level, check_n_damp,
                           check_nondecreasing, check_nonnegative, wall_rows)
 from ._jit import compiling_beside
-from .adhesion import (ADHESIVE_JOBS, solve_adhesive_contact, warm_adhesion,
-                       warm_adhesive_yield, yield_wall_on)
+from .adhesion.runner import ADHESIVE_JOBS, warm_adhesion, warm_adhesive_yield
+from .adhesion.fixed_point import solve_adhesive_contact, yield_wall_on
 from .methods import check_method, check_serves, choose_auto
 from .results import (ContactResult, Deferred, DiffusionResult, per_contact_area,
                       summarize_status)
-from .plasticity import YIELD_METHODS, check_below_hardness, check_hardness
-from .yield_api import solve_yield_contact, solve_yield_diffusion
-from .separation import ADHESION_REFUSED, contact_fields, warm_separation
+from .plasticity.hardness import YIELD_METHODS, check_below_hardness
+from .plasticity.yield_wall import solve_yield_contact, solve_yield_diffusion
+from .separation.elastic import contact_fields, warm_separation
 from .walls import check_wall_callable, sample_wall
 from .sweep import check_parallel, run_sweep, warm_sweeps
-from .theories import check_theory, check_theory_scene, solve_theory_contact
+from .theories import solve_theory_contact
+from .plan import finish_contact, plan_contact, refusals_text
 from .scene import (
     DETACHMENT_PREFACTOR,
     _check_rtol,
-    _check_scene_args,
     _check_zeta,
     default_zeta,
     _diffusion_times,
-    unpack_scene,
 )
 
 __all__ = ["solve_diffusion", "solve_contact", "default_zeta", "warmup"]
@@ -162,7 +162,7 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
         elastic area between the walls). Forms as ``sigma_a``: a scalar, (n_t,) or (n_p, n_t)
         samples (continuous: no jumps), or a vectorised callable G -> sigma_y. A constant
         sigma_y with sigma_a = 0 is the exact series (method "analytic"; "auto" takes it);
-        every other pair of walls is solved by "strip" (see ``persson_fast.strip``;
+        every other pair of walls is solved by "strip" (see ``persson_fast.plasticity.strip``;
         "auto" takes it), with rtol and ``error_estimate`` referring to the real contact
         area area + plastic_area. The walls must keep -sigma_a < sigma_y and start with
         -sigma_a < pressure < sigma_y. None (default): no yield wall. [Pa]
@@ -344,7 +344,7 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
 
 def _images_profile(p, G):
     """A(zeta)/A0 of the closed form without adhesion, (n_p, n_z)."""
-    area_z = analytic.images_area(p[:, None], G[None, :])
+    area_z = images_area(p[:, None], G[None, :])
     return np.broadcast_to(area_z, (p.size, G.size)).astype(float)
 
 
@@ -369,11 +369,11 @@ def _analytic_linear(G, rows, p):
             load[k] = 0.0
             continue
         if a0 == 0 and b == 0:
-            area[k] = analytic.images_area(p[k], G)
+            area[k] = images_area(p[k], G)
             load[k] = np.where(area[k] > 0, p[k], 0.0)
         else:
-            area[k] = analytic.linear_boundary_area(p[k], G, a0, b)
-            load[k] = analytic.linear_boundary_load(p[k], G, a0, b)
+            area[k] = linear_boundary_area(p[k], G, a0, b)
+            load[k] = linear_boundary_load(p[k], G, a0, b)
     return {
         "area": area, "load": load, "detached_area": 1.0 - area,
         "detached_load": load - p[:, None], "error_estimate": np.zeros((n_p, n_t)),
@@ -381,99 +381,100 @@ def _analytic_linear(G, rows, p):
     }
 
 
-#: tolerance bounds of the pull-off check of separated tensions in solve_contact
-LOST_CONTACT_RTOL = (1e-4, 1e-3)
-
-
-def _flag_lost_contact(res, surface, e_star, dg, energy_correction, beta, rtol,
-                       theory="persson01", theory_gamma=None, hardness=None):
-    """Flag tensions where the fixed point separated although the contact branch reaches them.
-
-    Near the pull-off stress the end of the contact branch on one zeta grid falls short of
-    the converged one (a second-order grid error; about 0.6 % of sigma_c on the seed scene at
-    rtol 1e-4), and the fixed point at fixed p_nom is nearly singular there (with the
-    corrected theories it loses the branch earlier: seed scene, yp08, from about 0.9 sigma_c
-    at rtol 1e-4). When a tension ends separated, :func:`persson_fast.pull_off` of the same
-    scene (theory and yield wall included; at rtol clipped to LOST_CONTACT_RTOL) says whether
-    contact exists there; such pressures get status LOST_CONTACT, and so do those within its
-    error estimate of sigma_c, where separation cannot be confirmed. A corrected theory or a
-    yield wall is checked at the looser bound of LOST_CONTACT_RTOL.
-
-    pull_off's own warning (estimate above its rtol) is not issued here: the private
-    :func:`persson_fast.pulloff._pull_off` returns it instead, and its error estimate
-    already widens the flagged band. No warning filter is touched, so this is safe on the
-    worker threads of a scan (``warnings.catch_warnings`` is not thread-safe before
-    Python 3.14 and could leave an 'ignore' filter behind for good).
-    """
-
-    from .pulloff import _pull_off
-
-    sep = (res.pressure < 0) & (res.area <= 0) & (res.status == 0)
-    if not np.any(sep):
-        return res
-    rtol_c = min(max(rtol, LOST_CONTACT_RTOL[0]), LOST_CONTACT_RTOL[1])
-    if theory != "persson01" or hardness is not None:
-        # their branch points cost more (the corrected times; the two-wall solver): the check
-        # runs at the looser bound, which only widens the flagged band (seed scene, yp08: 1.3 s
-        # against 25 s at 1e-4)
-        rtol_c = LOST_CONTACT_RTOL[1]
-    try:
-        sigma_c, info, _ = _pull_off(surface, e_star=e_star, work_of_adhesion=dg,
-                                     energy_correction=energy_correction,
-                                     detachment_prefactor=beta, theory=theory,
-                                     theory_gamma=theory_gamma, hardness=hardness,
-                                     rtol=rtol_c, bracket=False)
-    except RuntimeError as exc:
-        # the end of the branch is unknown: no separated tension can be confirmed
-        return _flag_rows(res, sep, f"; separated tensions not checked against the pull-off "
-                                    f"stress ({exc})")
-    lost = sep & (res.pressure > -(sigma_c + info["error_estimate"]))
-    if not np.any(lost):
-        return res
-    return _flag_rows(res, lost, f"; pull-off stress {sigma_c:.6g} +- "
-                                 f"{info['error_estimate']:.2g} Pa")
-
-
-def _flag_rows(res, rows, note):
-    """``res`` with status LOST_CONTACT at ``rows`` (a mask) and ``note`` added to its
-    message."""
-    status = np.where(rows, LOST_CONTACT, res.status)
+def _route_elastic(plan, pressure, zeta, rtol, parallel, controls):
+    """No wall: the closed form erf(p / 2 sqrt G1) or a grid method."""
+    surface, z = plan.surface, _check_zeta(zeta, plan.surface)
+    p = _check_pressure(pressure, allow_negative=False)
+    G = _diffusion_times(surface, z, plan.e_star, default_grid=zeta is None)
+    use = choose_auto("linear") if plan.method == "auto" else plan.method
+    t0 = time.perf_counter()
+    if use == "analytic":
+        # the area at zeta1 now, its profile in zeta (n_p x n_z erf calls, 40x the work of the
+        # answer) only when read: area_zeta[:, -1] is bitwise this area
+        area = _images_area_at(p, G[-1])
+        area_z = Deferred(_images_profile, p, G)
+        contact = area > 0
+        # the load in contact is the pressure where A > 0 (usually at every pressure: a copy)
+        load = p.copy() if contact.all() else np.where(contact, p, 0.0)
+        det_a = 1.0 - area
+        det_l = load - p
+        err = np.zeros(p.size)
+        status = np.zeros(p.size, dtype=np.int64)
+        mean_p = per_contact_area(p, area)
+        mean_s = mean_p.copy()              # load / A: p / A where A > 0, nan elsewhere
+        timings = {"solve": time.perf_counter() - t0}
+    else:
+        out, timings = run_sweep(G, np.zeros((p.size, z.size)), p, rtol=rtol, method=use,
+                                 parallel=parallel)
+        area_z = out["area"]
+        load = out["load"][:, -1]
+        det_a = out["detached_area"][:, -1]
+        det_l = out["detached_load"][:, -1]
+        err = out["error_estimate"][:, -1]
+        status = out["status"]
+        area = area_z[:, -1].copy()
+        mean_p, mean_s = per_contact_area(p, area), per_contact_area(load, area)
     success, message = summarize_status(status)
-    return replace(res, status=status, success=success, message=message + note)
+    zeros = (p.size, z.size)
+    return ContactResult(
+        pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=Deferred(np.zeros, zeros),
+        gamma_eff=Deferred(np.zeros, zeros),
+        load=load, mean_contact_pressure=mean_p, mean_contact_stress=mean_s,
+        detached_area=det_a, detached_load=det_l,
+        error_estimate=err, method=use, status=status, success=success, message=message,
+        timings=timings,
+        separation_source=functools.partial(contact_fields, surface, plan.e_star,
+                                            plan.energy_correction, parallel),
+    )
 
 
-def _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction, beta, method,
-                            rtol, parallel, controls, theory, theory_gamma, hardness):
-    """solve_contact with a yield wall and adhesion, or with a yield wall and a corrected
-    theory (arguments validated but pressure, zeta and method): the adhesive fixed point with
-    the two-wall solver inside. Without adhesion (a corrected theory: the fixed point then
-    iterates the corrected time T alone) the detachment wall is 0 (prefactor 0) and the
-    adhesive profiles of the result are zero."""
-    what = "with adhesion" if dg > 0 else f"with theory={theory!r}"
-    if method not in ("auto", "strip"):
-        raise ValueError(f"method must be 'auto' or 'strip' for a yield wall {what} [-] (the "
-                         f"fixed point runs the two-wall solver 'strip'); got method = "
-                         f"{method!r}")
-    p = _check_pressure(pressure, allow_negative=dg > 0)
-    z = _check_zeta(zeta, surface) if zeta is not None else None
-    h1 = float(yield_wall_on(hardness, np.array([1.0]))[0])
-    check_below_hardness(p, h1, "hardness at zeta = 1")
-    res = solve_adhesive_contact(surface, p, z, e_star=e, work_of_adhesion=dg if dg > 0 else 1.0,
-                                 energy_correction=energy_correction,
-                                 detachment_prefactor=beta if dg > 0 else 0.0,
-                                 method="auto", rtol=rtol, parallel=parallel, controls=controls,
-                                 zeta_given=zeta is not None, theory=theory,
-                                 theory_gamma=theory_gamma, hardness=hardness)
-    res = replace(res, method="strip", separation_source=(
-        f"separation, stiffness and elastic_energy are derived for elastic contact with the "
-        f"original theory only; got hardness = {hardness!r}, work_of_adhesion = {dg!r} and "
-        f"theory = {theory!r}"))
-    if dg == 0:
-        zeros = np.zeros_like(res.area_zeta)
-        return replace(res, sigma_a=zeros, gamma_eff=zeros.copy(), elastic_energy_zeta=None,
-                       sticky=None)
-    return _flag_lost_contact(res, surface, e, dg, energy_correction, beta, rtol, theory,
-                              theory_gamma, hardness)
+def _route_theory(plan, pressure, zeta, rtol, parallel, controls):
+    """A corrected theory without walls: the near-closed form."""
+    return solve_theory_contact(plan.surface, _check_pressure(pressure, allow_negative=False),
+                                _check_zeta(zeta, plan.surface), plan.e_star, plan.theory,
+                                plan.theory_gamma)
+
+
+def _route_yield(plan, pressure, zeta, rtol, parallel, controls):
+    """A yield wall alone: the exact two-wall series or the two-wall solver."""
+    z = _check_zeta(zeta, plan.surface)
+    G = _diffusion_times(plan.surface, z, plan.e_star, default_grid=zeta is None)
+    return solve_yield_contact(plan.surface, pressure, z, G, e=plan.e_star,
+                               dg=float(plan.work_of_adhesion), method=plan.method,
+                               theory=plan.theory, hardness=plan.hardness, rtol=rtol,
+                               parallel=parallel, check_pressure=_check_pressure)
+
+
+def _route_adhesive(plan, pressure, zeta, rtol, parallel, controls, hardness=None):
+    """The detachment wall (and with ``hardness`` the yield wall too): the adhesive fixed
+    point around the one- or two-wall solver. Without adhesion (a corrected theory with a
+    yield wall: the fixed point then iterates the corrected time T alone) the detachment
+    wall is 0 (prefactor 0)."""
+    dg = plan.work_of_adhesion
+    p = _check_pressure(pressure, allow_negative=dg > 0) if hardness is not None else pressure
+    z = _check_zeta(zeta, plan.surface) if zeta is not None else None
+    if hardness is not None:
+        h1 = float(yield_wall_on(hardness, np.array([1.0]))[0])
+        check_below_hardness(p, h1, "hardness at zeta = 1")
+    res = solve_adhesive_contact(
+        plan.surface, p, z, e_star=plan.e_star, work_of_adhesion=dg if dg > 0 else 1.0,
+        energy_correction=plan.energy_correction,
+        detachment_prefactor=plan.detachment_prefactor if dg > 0 else 0.0,
+        method="auto" if hardness is not None else plan.method, rtol=rtol, parallel=parallel,
+        controls=controls, zeta_given=zeta is not None, theory=plan.theory,
+        theory_gamma=plan.theory_gamma, hardness=hardness)
+    return res if hardness is None else replace(res, method="strip")
+
+
+def _route_two_wall(plan, pressure, zeta, rtol, parallel, controls):
+    """A yield wall with adhesion or a corrected theory: the two-wall fixed point."""
+    return _route_adhesive(plan, pressure, zeta, rtol, parallel, controls,
+                           hardness=plan.hardness)
+
+
+#: the solver of each route of :data:`persson_fast.plan.ROUTES`
+SOLVERS = {"elastic": _route_elastic, "theory": _route_theory, "yield": _route_yield,
+           "adhesive-fixed-point": _route_adhesive, "two-wall-fixed-point": _route_two_wall}
 
 
 def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
@@ -499,7 +500,7 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     e_star : float
         Effective modulus E* = E / (1 - nu^2) > 0, in Pa (1 GPa is 1e9); required unless a
         Scene is given. Below 1e5 Pa
-        (``persson_fast.surfaces.E_STAR_WARN_BELOW``) a UserWarning says so; a value for
+        (``persson_fast.surfaces.models.E_STAR_WARN_BELOW``) a UserWarning says so; a value for
         which G(q1) (or, with adhesion, the detachment stress or U_el/Delta gamma)
         overflows float64 raises a ValueError. [Pa]
     work_of_adhesion : float
@@ -559,7 +560,7 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
         ``plastic_area_zeta`` its profile). A constant one is the exact two-wall series
         (method "auto" or "analytic", error 0); a scale-dependent one (or method="strip")
         the two-wall solver on the wall sigma_Y(zeta(G)), error-controlled to rtol in the
-        real area (``persson_fast.plasticity``, ``persson_fast.strip``). With
+        real area (``persson_fast.plasticity``, ``persson_fast.plasticity.strip``). With
         adhesion, or with theory "yp08"/"wm17", the adhesive fixed point runs the two-wall
         solver (method "auto" or "strip"), and separated tensions are checked against
         ``pull_off`` with the same yield wall. Nominal pressures below sigma_Y(1). None
@@ -568,6 +569,15 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     Returns
     -------
     ContactResult
+
+    Raises
+    ------
+    ValueError
+        For a bad argument (the message names it, the rule, the unit and the value), and
+        for a combination of the scene's pieces that no route solves
+        (:data:`persson_fast.plan.REFUSALS`):
+
+    {refusals}
 
     Notes
     -----
@@ -583,98 +593,21 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the
     diffusion numerically (the same kernel the adhesive problem uses).
     """
-    surface, kw = unpack_scene(surface, {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
-                                         "energy_correction": energy_correction,
-                                         "detachment_prefactor": detachment_prefactor,
-                                         "hardness": hardness},
-                               "solve_contact")
-    hardness = kw.get("hardness")
-    e_star, work_of_adhesion = kw["e_star"], kw["work_of_adhesion"]
-    energy_correction, detachment_prefactor = kw["energy_correction"], kw["detachment_prefactor"]
-    method = check_method(method)
-    check_parallel(parallel)
-    rtol = _check_rtol(rtol)
-    e, dg, beta = _check_scene_args(surface, e_star, work_of_adhesion, detachment_prefactor,
-                                    energy_correction)
-    theory, theory_gamma = check_theory(theory, theory_gamma)
-    if theory != "persson01":
-        check_theory_scene(theory, float(dg), hardness)
-    if hardness is not None and (dg > 0 or theory != "persson01"):
-        return _adhesive_yield_contact(surface, pressure, zeta, e, dg, energy_correction,
-                                       float(beta), method, rtol, parallel, adhesion_controls,
-                                       theory, theory_gamma,
-                                       check_hardness(hardness, scale_dependent=True))
-    if hardness is not None:
-        hardness = check_hardness(hardness, scale_dependent=True)
-        z = _check_zeta(zeta, surface)
-        G = _diffusion_times(surface, z, e, default_grid=zeta is None)
-        return solve_yield_contact(surface, pressure, z, G, e=e, dg=float(dg), method=method,
-                                   theory=theory, hardness=hardness, rtol=rtol,
-                                   parallel=parallel, check_pressure=_check_pressure)
-    if method == "strip":
-        raise ValueError("method 'strip' is the two-wall solver: it needs a yield wall "
-                         "(hardness=...); use 'auto' or 'cn' without one")
-    if theory != "persson01" and dg == 0:
-        if method not in ("auto", "analytic"):
-            raise ValueError(
-                f"method must be 'auto' or 'analytic' for theory={theory!r} [-] (the corrected "
-                f"theories without walls are a near-closed form, not a grid solve); got "
-                f"method = {method!r}")
-        res = solve_theory_contact(surface, _check_pressure(pressure, allow_negative=False),
-                                   _check_zeta(zeta, surface), e, theory, theory_gamma)
-        return replace(res, separation_source=(
-            f"separation, stiffness and elastic_energy are derived for the original theory "
-            f"(theory='persson01') only; got theory = {theory!r}"))
-    z = _check_zeta(zeta, surface) if (zeta is not None or dg == 0) else None
-    if dg > 0:
-        res = solve_adhesive_contact(surface, pressure, z, e_star=e, work_of_adhesion=dg,
-                                     energy_correction=energy_correction,
-                                     detachment_prefactor=float(beta), method=method,
-                                     rtol=rtol, parallel=parallel, controls=adhesion_controls,
-                                     zeta_given=zeta is not None, theory=theory,
-                                     theory_gamma=theory_gamma)
-        res = _flag_lost_contact(res, surface, e, dg, energy_correction, float(beta), rtol,
-                                 theory, theory_gamma)
-        return replace(res, separation_source=ADHESION_REFUSED.format(
-            where="solve_contact", dg=float(dg)))
-    p = _check_pressure(pressure, allow_negative=False)
-    G = _diffusion_times(surface, z, e, default_grid=zeta is None)
-    use = choose_auto("linear") if method == "auto" else method
-    t0 = time.perf_counter()
-    if use == "analytic":
-        # the area at zeta1 now, its profile in zeta (n_p x n_z erf calls, 40x the work of the
-        # answer) only when read: area_zeta[:, -1] is bitwise this area
-        area = analytic._images_area_at(p, G[-1])
-        area_z = Deferred(_images_profile, p, G)
-        contact = area > 0
-        # the load in contact is the pressure where A > 0 (usually at every pressure: a copy)
-        load = p.copy() if contact.all() else np.where(contact, p, 0.0)
-        det_a = 1.0 - area
-        det_l = load - p
-        err = np.zeros(p.size)
-        status = np.zeros(p.size, dtype=np.int64)
-        mean_p = per_contact_area(p, area)
-        mean_s = mean_p.copy()              # load / A: p / A where A > 0, nan elsewhere
-        timings = {"solve": time.perf_counter() - t0}
-    else:
-        out, timings = run_sweep(G, np.zeros((p.size, z.size)), p, rtol=rtol, method=use,
-                                 parallel=parallel)
-        area_z = out["area"]
-        load = out["load"][:, -1]
-        det_a = out["detached_area"][:, -1]
-        det_l = out["detached_load"][:, -1]
-        err = out["error_estimate"][:, -1]
-        status = out["status"]
-        area = area_z[:, -1].copy()
-        mean_p, mean_s = per_contact_area(p, area), per_contact_area(load, area)
-    success, message = summarize_status(status)
-    zeros = (p.size, z.size)
-    return ContactResult(
-        pressure=p, area=area, zeta=z, G=G, area_zeta=area_z, sigma_a=Deferred(np.zeros, zeros),
-        gamma_eff=Deferred(np.zeros, zeros),
-        load=load, mean_contact_pressure=mean_p, mean_contact_stress=mean_s,
-        detached_area=det_a, detached_load=det_l,
-        error_estimate=err, method=use, status=status, success=success, message=message,
-        timings=timings,
-        separation_source=functools.partial(contact_fields, surface, e, energy_correction, parallel),
-    )
+    def check_run_args():
+        check_parallel(parallel)
+        nonlocal rtol
+        rtol = _check_rtol(rtol)
+
+    plan = plan_contact("solve_contact", surface,
+                        {"e_star": e_star, "work_of_adhesion": work_of_adhesion,
+                         "energy_correction": energy_correction,
+                         "detachment_prefactor": detachment_prefactor, "hardness": hardness},
+                        method=method, theory=theory, theory_gamma=theory_gamma,
+                        check_extra=check_run_args)
+    res = SOLVERS[plan.route](plan, pressure, zeta, rtol, parallel, adhesion_controls)
+    return finish_contact(plan, res, rtol)
+
+
+# the refused combinations in the docstring are the table's own words
+solve_contact.__doc__ = solve_contact.__doc__.replace("    {refusals}\n",
+                                                      refusals_text("        ") + "\n")

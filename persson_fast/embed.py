@@ -57,7 +57,7 @@ A contact law p(u), K(u) of a scene without adhesion (the mean interfacial separ
         return out                                   # law_pressure_stiffness, law_separation
 
 ``law.to_csv(path)`` and ``law.to_xarray()`` export the nodes for other codes
-(:mod:`persson_fast.contact_law` says how to interpolate them). Status 18
+(:mod:`persson_fast.separation.contact_law` says how to interpolate them). Status 18
 (``BAD_SEPARATION``): u not finite or <= 0; 19 (``LAW_EXTRAPOLATED``): u below the table;
 21 (``BAD_LAW``): the table is not one ``contact_law`` can have built (module table below),
 and p, K, u are NaN. Each call checks the whole table (one pass over its n nodes, O(n): a
@@ -109,7 +109,7 @@ from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # names of the type hints only
     from .scene import Scene
-    from .surface_base import Surface
+    from .surfaces.base import Surface
 
 import math
 
@@ -124,8 +124,8 @@ from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_sep
 from ._kernels.similarity import solve_one
 from ._kernels.strip import N_DAMP as STRIP_N_DAMP
 from ._kernels.strip import solve_strip
-from .adhesion import _scene_arrays, adhesion_zeta, refine_zeta
-from .contact_law import ContactLaw, contact_law
+from .adhesion.zeta_grid import _scene_arrays, adhesion_zeta, refine_zeta
+from .separation.contact_law import ContactLaw, contact_law
 from .scene import DETACHMENT_PREFACTOR
 
 __all__ = ["diffusion_area", "diffusion_solve", "elastoplastic_area", "adhesive_scene", "adhesive_area",

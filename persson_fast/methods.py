@@ -32,7 +32,7 @@ Every entry says:
 * ``two_walls`` (default False) -- a method that needs the yield wall (``sigma_y``,
   ``hardness``) and serves nothing else ("strip"); with a yield wall, "auto" takes
   "analytic" for a constant one without a detachment wall and "strip" otherwise
-  (:mod:`persson_fast.yield_api`);
+  (:mod:`persson_fast.plasticity.yield_wall`);
 * ``rtol_range`` -- where the method keeps the accuracy contract without flagging, as
   measured by ``python -m benchmarks.contract_table`` (``benchmarks/CONTRACT.md``): on the
   fixed scenes (images, linear and fast walls, the square-root wall as samples and callable, a

@@ -306,7 +306,7 @@ class ContactResult:
     hardness: float | None = None
     plastic_load: np.ndarray | None = None
     # a callable pressure -> (separation, stiffness, elastic_energy, seconds) for a scene
-    # whose separation is served (see persson_fast.separation.contact_fields), or the
+    # whose separation is served (see persson_fast.separation.elastic.contact_fields), or the
     # reason (a str) why it is not; set by solve_contact
     separation_source: object = field(default=None, repr=False, compare=False)
     _derived: dict = field(default_factory=dict, init=False, repr=False, compare=False)

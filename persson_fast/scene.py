@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._validation import as_float_array, check_finite, check_nonnegative, check_positive
-from .surfaces import E_STAR_WARN_BELOW, Surface, check_e_star
+from .surfaces.models import E_STAR_WARN_BELOW, Surface, check_e_star
 
 __all__ = ["Scene", "DETACHMENT_PREFACTOR", "default_zeta", "ZETA_PER_DECADE"]
 
@@ -222,7 +222,7 @@ class Scene:
     hardness: object = None
 
     def __post_init__(self):
-        from .plasticity import check_hardness
+        from .plasticity.hardness import check_hardness
 
         object.__setattr__(self, "hardness", check_hardness(self.hardness,
                                                            scale_dependent=True))

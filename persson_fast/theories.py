@@ -242,7 +242,7 @@ def theory_area(theory: str, pressure, G, theory_gamma=None) -> np.ndarray:
     check_nonnegative(g, "G", "Pa^2")
     check_nondecreasing(g, "G", "Pa^2")
     if theory == "persson01":
-        from .analytic import images_area
+        from .analytic.images import images_area
         return np.broadcast_to(images_area(p[:, None], g[None, :]), (p.size, g.size)).astype(float)
     area, _ = _sweep(theory, gamma, np.ascontiguousarray(p, dtype=np.float64),
                      np.ascontiguousarray(g, dtype=np.float64))
@@ -251,7 +251,7 @@ def theory_area(theory: str, pressure, G, theory_gamma=None) -> np.ndarray:
 
 def _sweep(theory, gamma, p, G):
     if gamma == 1.0 and theory in ("yp08", "xu24"):      # S = 1: the original theory itself
-        from .analytic import images_area
+        from .analytic.images import images_area
         area = np.broadcast_to(images_area(p[:, None], G[None, :]), (p.size, G.size))
         return area.astype(float), np.zeros(p.size, dtype=np.int64)
     w0, LA, DA, s_low, inv_step, _ = _table(theory, gamma)

@@ -3,7 +3,8 @@ import numpy as np
 from hypothesis import given, settings, strategies as st
 
 import persson_fast as pf
-from persson_fast.adhesion import adhesion_zeta, solve_adhesive_contact
+from persson_fast.adhesion.zeta_grid import adhesion_zeta
+from persson_fast.adhesion.fixed_point import solve_adhesive_contact
 
 SEED = pf.seed_scene()
 E_STAR = 2.9e9 / (1 - 0.3**2)
@@ -229,8 +230,8 @@ def test_ladder_start_interpolates_cubically_and_predicts_the_finer_level():
     """The start of a finer zeta level: the coarser level's values at its nodes, their cubic
     interpolant (in ln zeta) at the midpoints, exact for cubics on an uneven grid (linear in
     the end cells, clipped at 0), plus the second-order prediction (x_k - x_k-1)/4."""
-    from persson_fast.adhesion import _midpoints_cubic, _Solution, _ZetaLadder
-    from persson_fast.zeta_grid import refine_zeta
+    from persson_fast.adhesion.ladder import _midpoints_cubic, _Solution, _ZetaLadder
+    from persson_fast.adhesion.zeta_grid import refine_zeta
 
     u = np.cumsum(np.r_[0.0, np.linspace(0.1, 0.4, 9)])
     cubic = lambda v: 0.3 + v - 0.5 * v**2 + 0.2 * v**3      # noqa: E731

@@ -6,7 +6,7 @@ just before the end; the fixed point amplifies the diffusion solves' errors (the
 with them). Two scenes found by random probing that came back with status 0 and end-area
 errors of 4.7 and 4.1 rtol, the error estimate 0.17-0.2x the error. Such rows now solve their
 diffusions to rtol / CROSSING_INNER_DIV with a margin on the inner estimate
-(:data:`persson_fast.adhesion.CROSSING_LATE`).
+(:data:`persson_fast.adhesion.fixed_point.CROSSING_LATE`).
 
 The fixed point's stop: at zero load on a sticky surface and in tension the map is nearly
 singular in the direction the area is most sensitive to, and a small residual left the area

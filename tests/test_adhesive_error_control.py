@@ -2,7 +2,7 @@
 
 The fixed point runs on three nested zeta grids (the grid, one coarser, one finer); the end
 area is extrapolated from the two finest and its error estimated from the three
-(:func:`persson_fast.adhesion._ladder_estimate`); a pressure whose estimate exceeds rtol is
+(:func:`persson_fast.adhesion.fixed_point._ladder_estimate`); a pressure whose estimate exceeds rtol is
 refined, and flagged RTOL_NOT_MET if the work cap leaves it above. Where gamma_eff changes
 sign sigma_a starts as a square root, which the kernel samples (``wall_solve``).
 
@@ -14,8 +14,9 @@ import pytest
 
 import persson_fast as pf
 from persson_fast._kernels.status import RTOL_NOT_MET
-from persson_fast.adhesion import (_ladder_estimate, adhesion_zeta, coarsen_zeta, refine_zeta,
-                                   solve_adhesive_contact)
+from persson_fast.adhesion.ladder import _ladder_estimate
+from persson_fast.adhesion.zeta_grid import adhesion_zeta, coarsen_zeta, refine_zeta
+from persson_fast.adhesion.fixed_point import solve_adhesive_contact
 
 SA = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, C0=1e-22)
 E_SA = 1e9

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from persson_fast import analytic as an
+import persson_fast as an
 
 # --- tolerances and why ---------------------------------------------------------------------
 RTOL = 1e-12  # the closed forms are evaluated to ~1e-15; 1e-12 leaves room for libm differences

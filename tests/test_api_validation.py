@@ -482,7 +482,8 @@ def test_seed_e_star_poisson_range():
 
 
 def test_adhesive_start_shape():
-    from persson_fast.adhesion import adhesion_zeta, solve_adhesive_contact
+    from persson_fast.adhesion.zeta_grid import adhesion_zeta
+    from persson_fast.adhesion.fixed_point import solve_adhesive_contact
 
     s = pf.seed_scene()
     z = adhesion_zeta(s, 1e-2)

@@ -3,7 +3,6 @@ its convergence order, the bookkeeping identities and the grid solver."""
 import numpy as np
 import pytest
 
-from persson_fast import analytic
 from persson_fast._kernels import status as st
 from persson_fast._kernels.bnr import (
     bnr_sweep_parallel,
@@ -60,7 +59,7 @@ def test_images(rtol, scale):
     G = np.geomspace((sigma0 / 20.0) ** 2, (sigma0 / 1e-2) ** 2, 40)
     status, area, load, det, det_load, err, counts = bnr(G, 0.0, sigma0, rtol)
     assert status == st.OK
-    exact = analytic.images_area(sigma0, G)
+    exact = pf.images_area(sigma0, G)
     assert scaled_error(area, exact, rtol) < 1.0
     # the estimate is honest (it bounds the true error) and meets the tolerance
     assert np.all(np.abs(area - exact) <= ESTIMATE_FACTOR * err)
@@ -85,8 +84,8 @@ def test_linear_wall(rtol, b_scaled, sigma0_over_a):
     sa = a + b * G
     status, area, load, det, det_load, err, counts = bnr(G, sa, sigma0, rtol)
     assert status == st.OK
-    exact = analytic.linear_boundary_area(sigma0, G, a, b)
-    exact_load = analytic.linear_boundary_load(sigma0, G, a, b)
+    exact = pf.linear_boundary_area(sigma0, G, a, b)
+    exact_load = pf.linear_boundary_load(sigma0, G, a, b)
     assert scaled_error(area, exact, rtol) < 1.0
     assert np.all(np.abs(area - exact) <= ESTIMATE_FACTOR * err)
     # load: its error is the detached-load error, measured against the detached scale y0
@@ -104,7 +103,7 @@ def test_small_area_limitation():
     G = np.geomspace(1e14, 1e22, 9)           # sigma0/sqrt(G) from 1e-7 to 1e-11
     status, area, load, det, det_load, err, counts = bnr(G, 0.0, sigma0, rtol)
     assert status == st.OK
-    exact = analytic.images_area(sigma0, G)
+    exact = pf.images_area(sigma0, G)
     assert scaled_error(area, exact, rtol) < 1.0
     assert np.all(np.abs(area - exact) <= err)
     tiny = exact < 1e-10
@@ -128,14 +127,14 @@ def _measured_orders(G, sa, sigma0, levels, exact=None):
 def test_order_images():
     sigma0 = 1.0
     G = np.geomspace(1e-3, 1e3, 25)
-    orders, errs = _measured_orders(G, 0.0, sigma0, range(4), analytic.images_area(sigma0, G))
+    orders, errs = _measured_orders(G, 0.0, sigma0, range(4), pf.images_area(sigma0, G))
     assert np.all(np.abs(orders - ORDER) < ORDER_SPREAD), (orders, errs)
 
 
 def test_order_linear_wall():
     sigma0, a, b = 1.0, 0.2, -0.6
     G = np.concatenate([[0.0], np.geomspace(1e-2, 10.0, 20)])
-    exact = analytic.linear_boundary_area(sigma0, G, a, b)
+    exact = pf.linear_boundary_area(sigma0, G, a, b)
     orders, errs = _measured_orders(G, a + b * G, sigma0, range(4), exact)
     assert np.all(np.abs(orders - ORDER) < ORDER_SPREAD), (orders, errs)
 

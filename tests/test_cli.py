@@ -1,4 +1,4 @@
-"""The ``persson-fast`` command, run in-process through ``persson_fast.cli.main``.
+"""The ``persson-fast`` command, run in-process through ``persson_fast.cli.main.main``.
 
 Covers: figure2 and its CSV columns, contact from flags and from a TOML file, the error path
 (``error: ...`` and exit code 2), outputs replaced only when complete and as a set (issue 11,
@@ -21,7 +21,8 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import cli, cli_output
+from persson_fast.cli import main as cli
+from persson_fast.cli import output as cli_output
 
 #: a self-affine scene that is sticky but not in full contact: pull-off about 0.1 MPa
 SCENE = ["--surface", "self-affine", "--hurst", "0.8", "--q0", "1e5", "--q1", "1e9",
@@ -581,12 +582,13 @@ def test_contact_psd_and_surface_flags_conflict(tmp_path, capsys):
 # --- area theories (--theory, --theory-gamma) ---------------------------------------------
 
 def test_cli_theory_names_match_the_package():
-    from persson_fast import cli, theories
+    from persson_fast import theories
+    from persson_fast.cli import main as cli
     assert cli.THEORY_NAMES == theories.THEORIES
 
 
 def test_cli_contact_theory(tmp_path, capsys):
-    from persson_fast import cli
+    from persson_fast.cli import main as cli
     out = tmp_path / "t.csv"
     args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
             "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e5", "1e6",
@@ -605,7 +607,7 @@ def test_cli_contact_theory(tmp_path, capsys):
 
 def test_cli_theory_with_adhesion(capsys):
     """wm17 serves adhesion; xu24 is refused with the reason."""
-    from persson_fast import cli
+    from persson_fast.cli import main as cli
     args = ["contact", "--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
             "--h-rms", "1e-6", "--e-star", "1e9", "--pressure", "1e6", "--theory", "wm17",
             "--work-of-adhesion", "0.05", "--rtol", "1e-3"]
@@ -617,7 +619,7 @@ def test_cli_theory_with_adhesion(capsys):
 
 
 def test_cli_theory_from_config(tmp_path, capsys):
-    from persson_fast import cli
+    from persson_fast.cli import main as cli
     cfg = tmp_path / "c.toml"
     cfg.write_text('e_star = 1e9\npressures = [1e6]\ntheory = "xu24"\n'
                    '[surface]\nmodel = "self-affine"\nhurst = 0.8\nq0 = 1e4\nq1 = 1e9\n'
@@ -642,7 +644,7 @@ def test_console_script_exits_with_mains_code_and_frozen_objects():
     frozen, threshold = gc.get_freeze_count(), gc.get_threshold()
     assert cli.main(["--points", "1", "--out", "unused"]) == 2
     assert gc.get_freeze_count() == frozen and gc.get_threshold() == threshold
-    code = ("import atexit, gc, sys; from persson_fast import cli; "
+    code = ("import atexit, gc, sys; from persson_fast.cli import main as cli; "
             "atexit.register(lambda: print('frozen', gc.get_freeze_count() > 0, "
             "gc.get_threshold()[0])); "
             "sys.argv = ['persson-fast', '--points', '1']; cli.run()")

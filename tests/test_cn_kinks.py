@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings, strategies as hst
 
 import persson_fast as pf
-from persson_fast._kernels import similarity as dk
+from persson_fast._kernels import pieces
 
 ATOL = 1e-12
 RTOLS = (1e-6, 1e-7, 1e-8)
@@ -36,9 +36,9 @@ def test_the_found_kink_case_is_within_rtol():
     assert np.all(np.abs(r.area[0] - ref.area[0]) <= r.error_estimate[0] + 1e-9 * ref.area[0])
     G_k = np.concatenate([[0.0], G])
     sa_k = np.concatenate([[sa[0]], sa])
-    assert dk._first_kink(G_k, sa_k, np.int64(1)) == int(np.flatnonzero(G_k == 0.25)[0])
+    assert pieces._first_kink(G_k, sa_k, np.int64(1)) == int(np.flatnonzero(G_k == 0.25)[0])
     straight = 0.3 - 0.1 * G_k
-    assert dk._first_kink(G_k, straight, np.int64(1)) == G_k.size
+    assert pieces._first_kink(G_k, straight, np.int64(1)) == G_k.size
 
 
 @pytest.mark.parametrize("rtol", RTOLS)
@@ -113,8 +113,8 @@ def test_kink_where_the_exact_start_ends_is_found():
     march begins on the kink, which counts as the first kink."""
     G_k = np.array([0.0, 0.1, 0.2, 0.4, 0.8])
     sa_k = np.array([0.0, -0.1, -0.2, 0.0, 0.4])     # slope -1, then +1 from G = 0.2
-    assert dk._first_kink(G_k, sa_k, np.int64(3)) == 2
-    assert dk._first_kink(G_k, np.zeros(5), np.int64(3)) == 5
+    assert pieces._first_kink(G_k, sa_k, np.int64(3)) == 2
+    assert pieces._first_kink(G_k, np.zeros(5), np.int64(3)) == 5
 
 
 def test_dense_schedule_pairs_pieces_for_the_coarsest_run():
@@ -124,17 +124,17 @@ def test_dense_schedule_pairs_pieces_for_the_coarsest_run():
     sa = np.zeros_like(G)
     flags = np.zeros(G.shape[0], dtype=np.int64)
     keep = np.ones(G.shape[0], dtype=np.bool_)
-    n_keep = dk._pair_pieces(G, sa, np.int64(2), 1e-2, 5.0, 40.0, np.empty(0), flags, keep)
+    n_keep = pieces._pair_pieces(G, sa, np.int64(2), 1e-2, 5.0, 40.0, np.empty(0), flags, keep)
     assert n_keep < G.shape[0] - 80          # most pieces are paired
     assert keep[:3].all() and keep[-1]       # the start, the first piece and the end are kept
     skipped = np.flatnonzero(~keep)
     assert np.all(np.diff(skipped) >= 2)     # pairs share no point
-    assert np.all(flags[skipped] & dk.PIECE_HALVE) and np.all(flags[skipped + 1] & dk.PIECE_HALVE)
+    assert np.all(flags[skipped] & pieces.PIECE_HALVE) and np.all(flags[skipped + 1] & pieces.PIECE_HALVE)
     # a kink at a would-be shared point stops that pair
     sa_kink = np.where(G > G[3], G - G[3], 0.0)
     flags[:] = 0
     keep[:] = True
-    dk._pair_pieces(G, sa_kink, np.int64(2), 1e-2, 5.0, 40.0, np.empty(0), flags, keep)
+    pieces._pair_pieces(G, sa_kink, np.int64(2), 1e-2, 5.0, 40.0, np.empty(0), flags, keep)
     assert keep[3]
 
 

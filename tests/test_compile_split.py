@@ -27,12 +27,12 @@ import pytest
 
 import persson_fast as pf
 from persson_fast import _jit
-from persson_fast import adhesion as adhesion_module
+from persson_fast.adhesion import runner as adhesion_module
 from persson_fast._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP,
                                             DEFAULT_OMEGA, solve_adhesive_one)
 from persson_fast._kernels.similarity import GRID_SIGNATURE, _solve_grid_tol
 from persson_fast.scene import DETACHMENT_PREFACTOR
-from persson_fast.zeta_grid import _scene_arrays, adhesion_zeta
+from persson_fast.adhesion.zeta_grid import _scene_arrays, adhesion_zeta
 
 needs_jit = pytest.mark.skipif(numba.config.DISABLE_JIT, reason="compiled code only")
 

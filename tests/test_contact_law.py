@@ -1,4 +1,4 @@
-"""The tabulated contact law p(u), K(u) (persson_fast.contact_law, embed.law_*).
+"""The tabulated contact law p(u), K(u) (persson_fast.separation.contact_law, embed.law_*).
 
 Oracle: the closed form (pf.solve_separation, ~1e-12, itself tested in test_separation.py)
 at separations the builder never saw (random, and the tails)."""
@@ -12,7 +12,7 @@ import pytest
 import persson_fast as pf
 from persson_fast import embed
 from persson_fast._kernels.status import BAD_PRESSURE, BAD_SEPARATION, LAW_EXTRAPOLATED, OK
-from persson_fast.surfaces import seed_e_star, seed_scene
+from persson_fast.surfaces.models import seed_e_star, seed_scene
 
 SELF_AFFINE = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
 SCENES = {"self_affine": (SELF_AFFINE, 1e9), "seed": (seed_scene(), seed_e_star())}

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import _reference as ref
+from persson_fast._reference import diffusion as ref
 from persson_fast._kernels.tridiag import thomas, theta_step
 from persson_fast.sweep import run_sweep
 from tolerances import ATOL, BOUNDS, IDENTITY, LOAD_CONSERVATION, RTOL, TWIN

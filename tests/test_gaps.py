@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import _reference_gaps as ref
+from persson_fast._reference import gaps as ref
 from persson_fast._kernels.status import RTOL_NOT_MET
 from tolerances import GAP_MEAN, GAP_TWIN
 
@@ -91,8 +91,8 @@ def test_components_against_the_twin():
     (cell width 1/64 in ln G) against centred differences of the twin's gap volumes (B by
     quad in q): the cell means, interpolated in the width h (monotone in zeta) to the twin's
     h(zeta), agree to 1e-4."""
-    from persson_fast import gaps as gp
-    from persson_fast.separation import kfun_table
+    from persson_fast.separation import gaps as gp
+    from persson_fast.separation.elastic import kfun_table
 
     surface, e, p = XU, 1e9, 0.04e9
     inverse = gp._Inverse(surface, e)

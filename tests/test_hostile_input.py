@@ -319,7 +319,7 @@ _SA_FLAGS = ["--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1"
 
 
 def _contact(*flags):
-    from persson_fast import cli
+    from persson_fast.cli import main as cli
 
     return cli.main(["contact", *flags])
 
@@ -372,7 +372,7 @@ def test_pull_off_of_the_scene_as_solved(capsys, flags, kw):
 def test_pull_off_refusal_is_in_one_place(monkeypatch, capsys):
     """A theory outside cli_config.PULL_OFF_THEORIES (or a yield wall while
     PULL_OFF_WITH_HARDNESS is False) is refused there, before solving (exit code 2)."""
-    from persson_fast import cli_config
+    from persson_fast.cli import config as cli_config
 
     monkeypatch.setattr(cli_config, "PULL_OFF_THEORIES", ("persson01",))
     assert _contact(*_SA_FLAGS, "--pressure", "1e5", "--theory", "wm17", "--pull-off") == 2
@@ -536,7 +536,7 @@ def test_ctrl_c_sent_from_outside_early_exits_130_without_traceback(tmp_path):
 
 
 def test_ctrl_c_while_parsing_is_answered_by_main(monkeypatch, capsys):
-    from persson_fast import cli
+    from persson_fast.cli import main as cli
 
     def interrupted():
         raise KeyboardInterrupt

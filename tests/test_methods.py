@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast._reference import cn_baseline
+from persson_fast._reference.diffusion import cn_baseline
 from persson_fast.methods import AUTO_POLICY, METHODS, check_serves, choose_auto
 
 from tolerances import ATOL
@@ -150,7 +150,8 @@ def test_registry_carries_the_kernels():
     per-method branch (a new method is its kernel file and one registry entry)."""
     import inspect
 
-    from persson_fast import methods, strip, sweep
+    from persson_fast import methods, sweep
+    from persson_fast.plasticity import strip
     from persson_fast._kernels import similarity
 
     compiled = [m for m, i in pf.METHODS.items() if i.get("family") not in (None, "closed-form")]

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import cli
+from persson_fast.cli import main as cli
 
 
 def _scene():

@@ -189,7 +189,7 @@ def test_inner_tolerance_follows_rtol():
     """The branch points' diffusion tolerance is f(rtol) rtol min(1, 2 g1): f = 0.05 at
     rtol <= 1e-6 (where the kernel's scatter is the whole budget), 0.2 at rtol >= 1e-5,
     log-linear and increasing between."""
-    from persson_fast.pulloff_branch import (PULL_OFF_INNER, PULL_OFF_INNER_LOOSE,
+    from persson_fast.adhesion.branch import (PULL_OFF_INNER, PULL_OFF_INNER_LOOSE,
                                              PULL_OFF_INNER_MIN, _inner_factor, _inner_rtol)
 
     assert _inner_factor(1e-7) == _inner_factor(1e-6) == PULL_OFF_INNER == 0.05

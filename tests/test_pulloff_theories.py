@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import pulloff_branch as pb
-from persson_fast.adhesion import ADHESION_DEFAULTS, THEORY_CODES, _controls
+from persson_fast.adhesion import branch as pb
+from persson_fast.adhesion.runner import ADHESION_DEFAULTS, THEORY_CODES, _controls
 from persson_fast.methods import choose_auto, variant_of
-from persson_fast.pulloff import PULL_OFF_OMEGA, _near_one_min
+from persson_fast.adhesion.pulloff import PULL_OFF_OMEGA, _near_one_min
 from persson_fast.theories import DEFAULT_GAMMA, correction_factor
-from persson_fast.zeta_grid import adhesion_zeta
+from persson_fast.adhesion.zeta_grid import adhesion_zeta
 
 SEED = pf.seed_scene()
 E_STAR = 2.9e9 / (1 - 0.3**2)

@@ -144,8 +144,8 @@ def test_pull_off_still_warns_private_variant_returns_the_text(monkeypatch):
     """The public pull_off keeps its RuntimeWarning; the private _pull_off returns the text
     instead (for callers that record info['converged'] themselves). The floor of the
     inner-solve error is raised to 1 % of sigma_c so that rtol 1e-3 is not met."""
-    from persson_fast import pulloff
-    from persson_fast.pulloff import _pull_off
+    from persson_fast.adhesion import pulloff as pulloff
+    from persson_fast.adhesion.pulloff import _pull_off
 
     monkeypatch.setattr(pulloff, "PULL_OFF_INNER_FLOOR", 0.01)
     with pytest.warns(RuntimeWarning, match="exceeds rtol"):

@@ -6,7 +6,7 @@ places, random values (receding and approaching pieces), a random nominal stress
 stress scale; output times at the breakpoints, the midpoints and an eighth into each piece
 (just after a kink, where a kinked wall's errors peak). Each is solved as samples and as a
 callable (``np.interp`` of the breakpoints: the sampling must find the kinks). The reference
-is ``persson_fast._reference_walls`` (the exact linear-wall kernel carried from kink to kink
+is ``persson_fast._reference.walls`` (the exact linear-wall kernel carried from kink to kink
 by quadrature, NumPy/SciPy only: it shares nothing with the solvers), its uncertainty from
 panels twice as wide.
 
@@ -92,7 +92,7 @@ def test_reference_is_converged(quick_walls):
 def test_the_issue_reproducer_is_within_rtol_or_flagged():
     """Issue 33, item 1: A(0.80730) was 1.12 rtol off with status 0 and an estimate of 0.78
     rtol (a point just after a kink the coarsest run skipped)."""
-    from persson_fast._reference_walls import piecewise_linear_area
+    from persson_fast._reference.walls import piecewise_linear_area
 
     br = np.array([0, 0.75435330, 0.86025527, 0.92032264])
     sa_br = np.array([0.13802327, 0.75050109, 0.80108797, 0.79578172])

@@ -1,4 +1,4 @@
-"""The slow twin persson_fast._reference_separation checked against itself and known limits.
+"""The slow twin persson_fast._reference.separation checked against itself and known limits.
 
 Nothing here touches the package's fast separation code: the double quadrature of the mean
 separation is held to the energy route (integration by parts of the elastic energy) and, for
@@ -14,8 +14,8 @@ import pytest
 from scipy.integrate import IntegrationWarning
 
 import persson_fast as pf
-from persson_fast import _reference_separation as ref
-from persson_fast.surfaces import seed_e_star, seed_scene
+from persson_fast._reference import separation as ref
+from persson_fast.surfaces.models import seed_e_star, seed_scene
 
 SCENES = {
     "self_affine": (pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6), 1e9),

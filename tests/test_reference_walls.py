@@ -1,4 +1,4 @@
-"""The kink-to-kink quadrature reference (persson_fast._reference_walls) against the closed
+"""The kink-to-kink quadrature reference (persson_fast._reference.walls) against the closed
 forms it must reproduce, and against itself on other panels: it is the oracle of the random
 kinked walls (tests/test_random_walls.py), so it is checked here without the solvers."""
 from __future__ import annotations
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from scipy.special import ndtr
 
-from persson_fast._reference_walls import piecewise_linear_area, survival, transition_density
+from persson_fast._reference.walls import piecewise_linear_area, survival, transition_density
 
 
 def _linear_area(sigma0, G, a, b):

@@ -1,4 +1,4 @@
-"""The slow two-wall twin persson_fast._reference_yield against exact results.
+"""The slow two-wall twin persson_fast._reference.yield_wall against exact results.
 
 translating_walls (the exact series for two walls translating together) is held to the
 constant-wall series plastic_area, to the single moving wall (linear_boundary_*), to its own
@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast._reference_yield import OUTPUTS, translating_walls, two_wall_reference
+from persson_fast._reference.yield_wall import OUTPUTS, translating_walls, two_wall_reference
 
 AREAS = ("elastic_area", "plastic_area", "detached_area")
 LOADS = ("load", "plastic_load", "detached_load")

@@ -14,13 +14,13 @@ import persson_fast as pf
 xr = pytest.importorskip("xarray")
 distributed = pytest.importorskip("distributed")
 
-from persson_fast.scan import scan  # noqa: E402  (after the optional-dependency skips)
+from persson_fast.scan.api import scan  # noqa: E402  (after the optional-dependency skips)
 
 # the module itself (``persson_fast.scan`` may be shadowed by the function in the package)
 scan_module = importlib.import_module("persson_fast.scan")
 #: where a scan's scenes are solved (the names a test patches: solve_contact, _pull_off,
 #: _stderr_is_terminal are looked up there)
-scan_run = importlib.import_module("persson_fast.scan_run")
+scan_run = importlib.import_module("persson_fast.scan.run")
 
 E_STAR = 2.9e9 / (1.0 - 0.3**2)             # seed PMMA [Pa]
 SEED = pf.seed_scene()

@@ -15,9 +15,9 @@ from hypothesis import strategies as st
 from scipy import integrate, special
 
 import persson_fast as pf
-from persson_fast import separation as sep
+from persson_fast.separation import elastic as sep
 from persson_fast._kernels import separation as ksep
-from persson_fast.surfaces import seed_e_star, seed_scene
+from persson_fast.surfaces.models import seed_e_star, seed_scene
 
 SELF_AFFINE = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
 E_SA = 1e9
@@ -356,7 +356,7 @@ def test_bad_scene_arguments():
 
 # --- against the slow reference twin (scipy quad of the double integral) ---------------------
 def _reference():
-    from persson_fast import _reference_separation as ref
+    from persson_fast._reference import separation as ref
     return ref
 
 

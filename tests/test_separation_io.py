@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import cli
+from persson_fast.cli import main as cli
 
 SCENE = ["--surface", "self-affine", "--hurst", "0.8", "--q0", "1e4", "--q1", "1e9",
          "--h-rms", "1e-6", "--e-star", "1e9"]

@@ -13,8 +13,8 @@ from hypothesis import assume, example, given, settings, strategies as hs
 
 import persson_fast as pf
 from persson_fast._kernels import status as st
-from persson_fast._reference_yield import translating_walls, two_wall_reference
-from persson_fast.strip import solve_two_walls
+from persson_fast._reference.yield_wall import translating_walls, two_wall_reference
+from persson_fast.plasticity.strip import solve_two_walls
 
 RTOL = 1e-6
 ATOL = 1e-12

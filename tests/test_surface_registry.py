@@ -11,16 +11,16 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import cli
-from persson_fast.surfaces import (SURFACE_MODELS, Parameter, SurfaceModel, band_parameters,
+from persson_fast.cli import main as cli
+from persson_fast.surfaces.models import (SURFACE_MODELS, Parameter, SurfaceModel, band_parameters,
                                    register_surface_model)
 
 #: the module (``pf.scan`` is the function)
 scan_module = importlib.import_module("persson_fast.scan")
 #: the command line and scan, with the modules their code lives in
-ENTRY_MODULES = ("persson_fast.cli", "persson_fast.cli_parser", "persson_fast.cli_config",
-                 "persson_fast.cli_output", "persson_fast.scan", "persson_fast.scan_grid",
-                 "persson_fast.scan_run", "persson_fast.scan_results")
+ENTRY_MODULES = ("persson_fast.cli", "persson_fast.cli.parser", "persson_fast.cli.config",
+                 "persson_fast.cli.output", "persson_fast.scan", "persson_fast.scan.grid",
+                 "persson_fast.scan.run", "persson_fast.scan.results")
 
 # --------------------------------------------------------------------------------------------
 # the package's own models: what the command line accepted before the declarations
@@ -143,7 +143,7 @@ NEW_MODEL = '''
 """A power-law spectrum given by its value at q0: C(q) = C(q0) (q/q0)^-exponent on [q0, q1]."""
 import numpy as np
 
-from persson_fast.surfaces import Parameter, Surface, band_parameters
+from persson_fast.surfaces.models import Parameter, Surface, band_parameters
 
 
 class PowerLawPSD(Surface):

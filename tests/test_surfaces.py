@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from persson_fast.surfaces import (
+from persson_fast.surfaces.models import (
     BOLTZMANN,
     CapillaryWaves,
     SelfAffine,

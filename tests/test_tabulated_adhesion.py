@@ -20,7 +20,7 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 import persson_fast as pf
-from persson_fast.zeta_grid import (BREAKPOINT_MERGE_RTOL, ZETA_MERGE_FRACTION, _scene_arrays,
+from persson_fast.adhesion.zeta_grid import (BREAKPOINT_MERGE_RTOL, ZETA_MERGE_FRACTION, _scene_arrays,
                                    adhesion_zeta, refine_zeta)
 from tolerances import ATOL
 

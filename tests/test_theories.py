@@ -1,6 +1,6 @@
 """Corrected area theories without walls (yp08, wm17, xu24) and the unchanged persson01 path.
 
-The reference twin (:mod:`persson_fast._reference_theories`) integrates each theory's own
+The reference twin (:mod:`persson_fast._reference.theories`) integrates each theory's own
 definition in the uncorrected variance with scipy's DOP853 at rtol 1e-13 (xu24: brentq at
 each variance); it shares no code or change of variables with the compiled tables.
 """
@@ -15,7 +15,7 @@ from scipy.special import erf, erfc
 import persson_fast as pf
 from persson_fast import theories as th
 from persson_fast._kernels import theories as kt
-from persson_fast._reference_theories import reference_area, stepped_area
+from persson_fast._reference.theories import reference_area, stepped_area
 
 E_STAR = 1.0e9
 CORRECTED = ("yp08", "wm17", "xu24")

@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import adhesion as adhesion_module
+from persson_fast.adhesion import runner as adhesion_module
 from persson_fast import sweep
 
 #: every accepted value of ``parallel`` but the serial one
@@ -165,7 +165,8 @@ def cmd_workqueue(spec):
 def cmd_nested(spec):
     """User threads, and the package's own pool threads, calling solve_contact."""
     from concurrent.futures import ThreadPoolExecutor
-    from persson_fast import adhesion, sweep
+    from persson_fast import sweep
+    from persson_fast.adhesion import runner as adhesion
     modes = []
     original = sweep.run_rows
     def spy(*args, **kwargs):

@@ -1,6 +1,6 @@
 """Measured surfaces: height maps, line scans and spectrum files to Persson's C(q).
 
-The numpy path (persson_fast.topography) needs nothing optional; the tests that use
+The numpy path (persson_fast.surfaces.topography) needs nothing optional; the tests that use
 SurfaceTopography skip cleanly when it is not installed.
 
 Expected errors, and why (the tolerances below):
@@ -28,7 +28,8 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast import topography as topo
+from persson_fast.surfaces import topography as topo
+from persson_fast.surfaces import files, synthetic
 
 #: rounding of an FFT and a few sums over up to 1e6 modes, relative
 ROUNDING = 1e-10
@@ -167,7 +168,7 @@ def test_convention_equals_surfacetopography_over_two_pi_squared():
 def test_map_round_trip(hurst, n):
     dx = 1e-6 / n
     surface = _input(hurst, n, dx)
-    h = topo.synthesize_heights(surface.psd, (n, n), dx, rng=n)
+    h = synthetic.synthesize_heights(surface.psd, (n, n), dx, rng=n)
     s = pf.TabulatedPSD.from_heights(h, dx, periodic=True)
     assert s.q0 == surface.q0 and s.q1 == surface.q1
     # the map's own rms height (mean removed), exactly
@@ -195,7 +196,7 @@ def test_line_scan_round_trip(hurst, n, n_lines):
     dx = 1e-6 / n
     surface = _input(hurst, n, dx)
     f = _factor(hurst)
-    h = topo.synthesize_line_scans(lambda q: surface.psd(q) * q / f, n, dx, n_lines=n_lines,
+    h = synthetic.synthesize_line_scans(lambda q: surface.psd(q) * q / f, n, dx, n_lines=n_lines,
                                    rng=n + n_lines)
     s = pf.TabulatedPSD.from_heights(h, dx, line_scans=True, periodic=True, hurst=hurst)
     own = math.sqrt(np.mean(h**2))
@@ -218,7 +219,7 @@ def test_rows_of_an_isotropic_map_convert_to_its_2d_spectrum(hurst):
     n = 256
     dx = 1e-6 / n
     surface = _input(hurst, n, dx)
-    h = topo.synthesize_heights(surface.psd, (n, n), dx, rng=11)
+    h = synthetic.synthesize_heights(surface.psd, (n, n), dx, rng=11)
     s2 = pf.TabulatedPSD.from_heights(h, dx, periodic=True)
     rows = pf.TabulatedPSD.from_heights(h, dx, line_scans=True, periodic=True, hurst=hurst)
     q = np.geomspace(8 * s2.q0, s2.q1 / 8, 25)
@@ -231,7 +232,7 @@ def test_non_periodic_map_with_window_and_tilt():
     keeps leakage out; slope_rms within a few percent of the surface's."""
     n, dx = 512, 1e-6 / 512
     surface = _input(0.8, n, dx)
-    big = topo.synthesize_heights(surface.psd, (n, n), dx, rng=5)
+    big = synthetic.synthesize_heights(surface.psd, (n, n), dx, rng=5)
     cut = big[:256, :256] + 0.05 * np.arange(256)[None, :] * dx
     s = pf.TabulatedPSD.from_heights(cut, dx)
     assert s.info["window"] == "hann" and s.info["detrend"] == "plane"
@@ -278,7 +279,7 @@ def test_from_topography_refuses_undefined_data_and_arrays():
 
 def test_reliability_cut_off_is_visible():
     n, dx = 64, 1e-8
-    h = topo.synthesize_heights(_input(0.8, n, dx).psd, (n, n), dx, rng=1)
+    h = synthetic.synthesize_heights(_input(0.8, n, dx).psd, (n, n), dx, rng=1)
     s = pf.TabulatedPSD.from_heights(h, dx, periodic=True)
     assert s.info["q_nyquist"] == pytest.approx(math.pi / dx)
     assert s.info["q_reliable"] == s.q1
@@ -314,7 +315,7 @@ def test_scan_too_small_for_q0_and_q1_above_nyquist():
 
 def test_user_band_keeps_only_its_modes():
     n, dx = 128, 1e-8
-    h = topo.synthesize_heights(_input(0.3, n, dx).psd, (n, n), dx, rng=2)
+    h = synthetic.synthesize_heights(_input(0.3, n, dx).psd, (n, n), dx, rng=2)
     q0 = 4 * 2 * math.pi / (n * dx)
     s = pf.TabulatedPSD.from_heights(h, dx, periodic=True, q0=q0, q1=math.pi / dx / 2)
     q, c, cell = topo.mode_spectrum(h, dx)
@@ -325,7 +326,7 @@ def test_user_band_keeps_only_its_modes():
 def test_missing_extra_names_the_install_command(monkeypatch, tmp_path):
     monkeypatch.setitem(sys.modules, "SurfaceTopography", None)
     with pytest.raises(ModuleNotFoundError, match=r'pip install "persson_fast\[topography\]"'):
-        topo.read_topography(tmp_path / "x.x3p")
+        files.read_topography(tmp_path / "x.x3p")
 
 
 # ----------------------------------------------------------------------------------------------

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import persson_fast as pf
-from persson_fast.plasticity import CheckedHardness, check_hardness
+from persson_fast.plasticity.hardness import CheckedHardness, check_hardness
 from persson_fast.walls import CallableWallError
 
 G = np.array([0.0, 0.5, 1.0])

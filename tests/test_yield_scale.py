@@ -7,8 +7,8 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import persson_fast as pf
-from persson_fast._reference_yield import translating_walls, two_wall_reference
-from persson_fast.plasticity import hardness_in_diffusion_time
+from persson_fast._reference.yield_wall import translating_walls, two_wall_reference
+from persson_fast.plasticity.hardness import hardness_in_diffusion_time
 
 SEED = pf.seed_scene()
 E_SEED = pf.seed_e_star()
@@ -277,7 +277,7 @@ def test_strip_refusals():
 
 def test_scene_scan_and_cli_take_a_scale_dependent_hardness(tmp_path, capsys):
     pytest.importorskip("xarray")
-    from persson_fast import cli
+    from persson_fast.cli import main as cli
 
     h = pf.hardness_power_law(3e8, 0.3)
     scene = pf.Scene(SEED, e_star=E_SEED, hardness=h)

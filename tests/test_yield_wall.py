@@ -174,7 +174,7 @@ def test_scan_hardness_refusals(params, kwargs, match):
 def test_cli_hardness(tmp_path, capsys):
     import csv
 
-    from persson_fast import cli
+    from persson_fast.cli import main as cli
 
     out = tmp_path / "h.csv"
     assert cli.main(["contact", "--surface", "capillary", "--temperature", "370",

@@ -1,7 +1,7 @@
 """Compiled evaluation of a tabulated pressure-separation law p(u), K(u) (no adhesion).
 
 A law is the tuple ``(v, y, dy, z, dz)`` of five (n,) float64 arrays that
-:func:`persson_fast.contact_law.contact_law` builds: v_i = ln u_i ascending (u in m),
+:func:`persson_fast.separation.contact_law.contact_law` builds: v_i = ln u_i ascending (u in m),
 y_i = ln p_i (p in Pa, descending) with the exact slopes dy/dv = -u K_i/p_i, and
 z_i = ln K_i (K in Pa/m) with the exact slopes dz/dv. Between nodes y(v) and z(v) are cubic
 Hermite interpolants (y monotone: the builder checks the Fritsch-Carlson conditions on

@@ -1,4 +1,4 @@
-"""Compiled pieces of the interfacial gap distribution (:mod:`persson_fast.gaps`), ``@njit``.
+"""Compiled pieces of the interfacial gap distribution (:mod:`persson_fast.separation.gaps`), ``@njit``.
 
 The separation carried by the spectrum above each edge of a partition in magnification
 (``partial_separations``), from which the model layer forms the mean gap of the area that
@@ -15,7 +15,7 @@ import numpy as np
 from .._jit import njit_serial
 from .separation import kfun_scaled
 
-#: shapes of a component (see :mod:`persson_fast.gaps`)
+#: shapes of a component (see :mod:`persson_fast.separation.gaps`)
 TRUNCATED = 0
 FOLDED = 1
 
