@@ -13,7 +13,7 @@ import time
 import numpy as np
 
 import persson_fast as pf
-from persson_fast import adhesion_march as am
+from persson_fast.adhesion import march as am
 
 
 def scenes():

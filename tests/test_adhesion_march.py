@@ -4,7 +4,7 @@ import pytest
 from scipy.special import erf
 
 import persson_fast as pf
-from persson_fast import adhesion_march as am
+from persson_fast.adhesion import march as am
 
 E_SEED = pf.seed_e_star()
 DG = pf.SEED_WORK_OF_ADHESION

@@ -24,9 +24,9 @@ import time
 
 import numpy as np
 
-from ._kernels.march import (I_AREA, I_GSTAR, I_J, I_SOLVES, I_STATUS, I_WORK, N_INFO,
+from .._kernels.march import (I_AREA, I_GSTAR, I_J, I_SOLVES, I_STATUS, I_WORK, N_INFO,
                              ST_SEPARATED, march_k)
-from .scene import DETACHMENT_PREFACTOR
+from ..scene import DETACHMENT_PREFACTOR
 
 #: resolution of level 0 at rtol 1e-6 (node spacing in xi, mesh points per decade of zeta and
 #: per e-fold of G, onset steps); scaled with rtol as (rtol/1e-6)^(1/RES_ORDER)
