@@ -28,11 +28,14 @@ def test_identity_on_todays_solution(seed_today):
     assert np.allclose(lhs, rhs, rtol=0, atol=1e-9 * DG)
 
 
-@pytest.mark.xfail(reason="fails at this commit, not yet diagnosed (the root K at the rtol-1e-8 "
-                   "mapping or the level-0 bracket at rtol 1e-4)")
 def test_phi_bracket_and_root_matches_todays_K(seed_today):
     """Phi(-U_full/dgamma) <= 0 <= Phi(1); the march's root K agrees with today's
-    K = A(zeta1) - U_el(1)/dgamma."""
+    K = A(zeta1) - U_el(1)/dgamma.
+
+    It failed (K off by 1.1e-5 and 2.6e-5 at 20 and 80 MPa, the area right) while j up to the
+    start (A = 1) was a trapezoid on the level-0 points only: a level-independent error in j
+    that Richardson cannot remove; the root absorbs it in K (only K + j enters the wall).
+    j there is now the exact j_1(G) (closed-form int q^2 C dq) by its cubic Hermite."""
     surf = pf.seed_scene()
     r = am.solve_march(surf, [0.0, 2e7, 8e7], e_star=E_SEED, work_of_adhesion=DG, rtol=1e-8)
     K_today = seed_today.area - seed_today.elastic_energy_zeta[:, 0] / DG
@@ -55,7 +58,9 @@ def test_march_area_against_today(seed_today):
     assert np.all(r["error_estimate"] <= 1e-6 * r["area"])
 
 
-@pytest.mark.xfail(reason="fails at this commit, not yet diagnosed")
+@pytest.mark.xfail(strict=True, reason="diagnosed: the rtol -> resolution mapping misses rtol "
+                   "without adhesion (level-0 error 1.6e-3, extrapolated 1.9e-6 at 10 MPa; its own "
+                   "estimate 3.2e-6 says so); today's solver gives erf to 1.8e-8 at dgamma 1e-12")
 def test_weak_adhesion_limit_is_erf():
     """dgamma -> 0: A = erf(sigma0 / (2 sqrt(G1)))."""
     s = pf.SelfAffine(hurst=0.8, q0=1e5, q1=1e9, h_rms=1e-7)
@@ -64,3 +69,16 @@ def test_weak_adhesion_limit_is_erf():
     G1 = float(s.diffusion_time(s.q1, 1e9))
     exact = erf(p / (2 * np.sqrt(G1)))
     assert np.allclose(r["area"], exact, rtol=1e-6)
+
+
+@pytest.mark.parametrize("dgamma", [1e-12, 1e-20])
+def test_weak_adhesion_root_is_found_and_estimate_covers(dgamma):
+    """U_el/dgamma up to 1e19: K + j(zeta1) is a difference at K's rounding; the root must
+    still close (it raised 'no slope and no bracket' at dgamma 1e-16) and the estimate must
+    cover the error against erf (the weak-adhesion limit)."""
+    s = pf.SelfAffine(hurst=0.8, q0=1e5, q1=1e9, h_rms=1e-7)
+    p = np.array([1e6, 1e7])
+    r = am.solve_march(s, p, e_star=1e9, work_of_adhesion=dgamma, rtol=1e-4)
+    G1 = float(s.diffusion_time(s.q1, 1e9))
+    exact = erf(p / (2 * np.sqrt(G1)))
+    assert np.all(np.abs(r["area"] - exact) <= r["error_estimate"] + 1e-8 * exact)

@@ -185,13 +185,14 @@ def _coarsen(p, n_act, hc):
 
 
 @njit_serial
-def march_k(K, sig0, beta2, gamma_s, Gm, c2m, dc2m, base, h, n_damp, refine, m_start, m_pre,
+def march_k(K, sig0, beta2, gamma_s, Gm, c2m, dc2m, j1m, base, h, n_damp, refine, m_start, m_pre,
             m_on, prof_a, prof_sa, prof_j, info):
     """March the adhesive diffusion for a given K; see the module docstring.
 
     Scene units (stress / scale): ``sig0`` the nominal pressure, ``Gm`` (n,) the mesh of G
     (Gm[0] = 0), ``c2m`` = c^2 and ``dc2m`` = d(c^2)/dG at the mesh points, ``base`` (n,) 1
-    at the points of the level-0 mesh. ``h``: node spacing in xi (the start grid is
+    at the points of the level-0 mesh, ``j1m`` (n,) j with A = 1 (exact, used up to the
+    start). ``h``: node spacing in xi (the start grid is
     2^START_FINE times finer). Every stretch that does not begin and end at level-0 points is
     divided into a number of steps proportional to ``refine`` (2^level), so that the
     discretisation of each level is the previous one's with every step halved: the start
@@ -226,9 +227,11 @@ def march_k(K, sig0, beta2, gamma_s, Gm, c2m, dc2m, base, h, n_damp, refine, m_s
     F1 = _f_of(1.0, gamma_s)
     g_s = 1.0 / (2.0 * GS_WIDTHS * GS_WIDTHS)
     gs_scene = g_s * y2
-    # j with A = 1 up to the start (the wall GS_WIDTHS free std away), on the level-0 points
-    # below it and the (level-independent) remainder
-    jj = 0.0
+    # j with A = 1 up to the start (the wall GS_WIDTHS free std away): the exact
+    # j_1(G) = (pi E*/(2 dgamma)) int_{q0}^{q(G)} q^2 C dq given at the mesh points (``j1m``),
+    # interpolated by the cubic Hermite with its exact slopes dj_1/dG = 2 beta^2 / c^2 (a
+    # quadrature on the level's own mesh would leave a level-independent error in j, which
+    # Richardson cannot remove; it moves K, not A)
     i = 0
     prof_a[0] = 1.0
     prof_sa[0] = sa0
@@ -236,32 +239,22 @@ def march_k(K, sig0, beta2, gamma_s, Gm, c2m, dc2m, base, h, n_damp, refine, m_s
     while i + 1 < n and Gm[i + 1] <= gs_scene:
         i += 1
         prof_a[i] = 1.0
-    ib = i
-    while ib > 0 and base[ib] != 1:
-        ib -= 1
-    kb = 0
-    for k in range(1, ib + 1):
-        if base[k] == 1:
-            jj += (Gm[k] - Gm[kb]) * beta2 * (F1 / c2m[kb] + F1 / c2m[k])
-            kb = k
     if i == n - 1:
         # the whole spectrum before the start: full contact
+        jj = j1m[n - 1]
         info[I_AREA] = 1.0
         info[I_J] = jj
         info[I_SA] = math.sqrt(c2m[n - 1] * max(K + jj, 0.0))
         return
-    # from the level-0 point ib to g_s: 8 refine trapezoids (the stretch is level-independent)
-    i_h = ib
-    n_sub = 8 * refine
-    c2_prev = c2m[ib]
-    for s in range(1, n_sub + 1):
-        G_s1 = Gm[ib] + (gs_scene - Gm[ib]) * s / n_sub
-        G_s0 = Gm[ib] + (gs_scene - Gm[ib]) * (s - 1) / n_sub
-        i_h = _interval(Gm, G_s1, i_h)
-        c2_new = _hermite(Gm, c2m, dc2m, i_h, G_s1)
-        jj += (G_s1 - G_s0) * beta2 * (F1 / c2_prev + F1 / c2_new)
-        c2_prev = c2_new
-    c2s = c2_prev
+    i_h = _interval(Gm, gs_scene, i)
+    c2s = _hermite(Gm, c2m, dc2m, i_h, gs_scene)
+    d_h = Gm[i_h + 1] - Gm[i_h]
+    t_h = (gs_scene - Gm[i_h]) / d_h
+    u_h = 1.0 - t_h
+    jj = ((1.0 + 2.0 * t_h) * u_h * u_h * j1m[i_h]
+          + t_h * u_h * u_h * d_h * 2.0 * beta2 * F1 / c2m[i_h]
+          + t_h * t_h * (3.0 - 2.0 * t_h) * j1m[i_h + 1]
+          + t_h * t_h * (t_h - 1.0) * d_h * 2.0 * beta2 * F1 / c2m[i_h + 1])
     # march units: g = G / y0^2, stresses / y0, c^2 / y0^2
     sa0m = sa0 / y0
     sa_a = math.sqrt(c2s / y2 * max(K + jj, 0.0))

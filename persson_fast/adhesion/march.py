@@ -103,6 +103,10 @@ class MarchMesh:
                        dtype=float)
         self.c2 = c2 / scale**2
         self.dc2 = beta**2 * dgamma * e_star / (0.25 * math.pi * e_star**2 * q**3 * C)
+        # j with A = 1: (pi E*/(2 dgamma)) int_{q0}^{q} q'^2 C dq' (closed form of the model)
+        j1 = 0.5 * math.pi * e_star * np.asarray(surface.moment(2, q0, q), dtype=float) / dgamma
+        j1[0] = 0.0
+        self.j1 = np.maximum.accumulate(j1)
         self.stride = [2 ** (levels - 1 - L) for L in range(levels)]
         base = np.zeros(xs.size, dtype=np.int64)
         base[::2 ** (levels - 1)] = 1
@@ -112,12 +116,13 @@ class MarchMesh:
     def level(self, L):
         s = self.stride[L]
         return (np.ascontiguousarray(self.G[::s]), np.ascontiguousarray(self.c2[::s]),
-                np.ascontiguousarray(self.dc2[::s]), np.ascontiguousarray(self.base[::s]))
+                np.ascontiguousarray(self.dc2[::s]), np.ascontiguousarray(self.j1[::s]),
+                np.ascontiguousarray(self.base[::s]))
 
 
 class _Level:
     def __init__(self, mesh, L, h, sig0, beta2, gamma_s):
-        self.G, self.c2, self.dc2, self.base = mesh.level(L)
+        self.G, self.c2, self.dc2, self.j1, self.base = mesh.level(L)
         self.refine = 2 ** L
         self.h, self.sig0, self.beta2, self.gamma_s = h, sig0, beta2, gamma_s
         n = self.G.size
@@ -127,7 +132,8 @@ class _Level:
         self.work = 0.0
 
     def phi(self, K):
-        march_k(K, self.sig0, self.beta2, self.gamma_s, self.G, self.c2, self.dc2, self.base,
+        march_k(K, self.sig0, self.beta2, self.gamma_s, self.G, self.c2, self.dc2, self.j1,
+                self.base,
                 self.h, N_DAMP, self.refine, M_START, M_PRE, ONSET_M, self.pa, self.ps, self.pj, self.info)
         self.calls += 1
         self.work += self.info[I_WORK]
@@ -174,7 +180,10 @@ def _solve_root(level, pts, tol_rel, k_min, k_max, max_iter=60):
         if neg is not None and pos is not None:
             lo, hi = min(neg[0], pos[0]), max(neg[0], pos[0])
             width = hi - lo
-            if width <= 4e-16 * max(abs(lo), abs(hi), 1e-300):
+            # a bracket at K's rounding, or one whose two end areas agree to the tolerance
+            # (A is continuous in K: the root's area lies between them)
+            if (width <= 32.0 * np.spacing(max(abs(lo), abs(hi), 1e-300))
+                    or abs(pos[2] - neg[2]) <= tol_rel * max(min(pos[2], neg[2]), 1e-12)):
                 t = -neg[1] / (pos[1] - neg[1]) if pos[1] != neg[1] else 0.5
                 return neg[0] + t * (pos[0] - neg[0]), neg[2] + t * (pos[2] - neg[2]), s_phi
             if width0 is not None and width > 0.5 * width0:
@@ -189,6 +198,13 @@ def _solve_root(level, pts, tol_rel, k_min, k_max, max_iter=60):
         elif not np.isfinite(k):
             raise RuntimeError("Phi: no slope and no bracket")
         k = min(max(k, k_min), k_max)
+        # K + j(zeta1) is a difference of two numbers of size ~U_el(1)/dgamma: with weak
+        # adhesion (U_el/dgamma >> 1) a secant step can be below K's rounding. Step at least
+        # a few ulps (towards the step's direction) so that the bracket closes instead of the
+        # same K being evaluated twice
+        ulp = 4.0 * np.spacing(max(abs(kb), abs(k), 1e-300))
+        if abs(k - kb) < ulp:
+            k = min(max(kb + math.copysign(ulp, k - kb if k != kb else -fb), k_min), k_max)
         f, a, _ = level.phi(k)
         pts.append((k, f, a))
         note(k, f, a)
