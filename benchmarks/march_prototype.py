@@ -3,6 +3,26 @@
 CPU time (time.process_time), one thread, per pressure; errors of A(zeta1)/A0 against a
 reference (today's solver at a tight rtol, cross-checked with the march at a fine resolution).
 Usage: NUMBA_NUM_THREADS=1 python -m benchmarks.march_prototype [--out results.json]
+
+Measured side by side in one run (AMD EPYC, 2 shared cores, NUMBA_NUM_THREADS=1,
+time.process_time per pressure; march at the calibrated mapping of commit 5d1d141, today =
+pf.solve_contact, parallel=False; "diff" = max |march - today| / A at the same rtol;
+random scenes: benchmarks.adhesive_scenes seed 1, the first three, its pressures):
+
+| scene                     | rtol 1e-4 today / march (x) | diff   | rtol 1e-6 today / march (x) | diff   | onset |
+|---------------------------|-----------------------------|--------|-----------------------------|--------|-------|
+| self-affine H0.8, 1, 5 MPa| 26.2 / 6.0 ms (4.4x)        | 7.0e-5 | 2056 / 107 ms (19.2x)       | 3.2e-7 | yes   |
+| seed, 11 p, 0-100 MPa     | 6.1 / 4.3 ms (1.4x)         | 8.2e-5 | 46.5 / 96.7 ms (0.48x)      | 3.5e-7 | no    |
+| random #0                 | 12.6 / 5.6 ms (2.3x)        | 5.1e-5 | 768 / 91 ms (8.4x)          | 3.2e-7 | yes   |
+| random #1                 | 10.6 / 3.3 ms (3.2x)        | 8.6e-6 | 118 / 83 ms (1.4x)          | 1.1e-7 | no    |
+| random #2                 | 2.6 / 3.5 ms (0.73x)        | 1.9e-4 | 7.7 / 73.9 ms (0.10x)       | 1.4e-9 | no    |
+
+Errors against references (self-affine: the march at 7 levels, extrapolated; seed: today at
+rtol 1e-8, agreeing with the fine march to 5e-8): err/rtol self-affine 0.60 / 0.44 / 0.54,
+seed 0.89 / 0.18 / 0.24 at rtol 1e-4 / 1e-5 / 1e-6; smallest estimate/error 0.59 / 0.89 /
+0.42 (self-affine; 0.42 < 0.5 at 1e-6) and 0.68 / 3.2 / 1.4 (seed). Observed order of the
+level differences on the self-affine scene (old mapping, 5 levels): 0.9-1.6 raw, 1.6-1.95
+after extrapolation: the post-onset layer is not fixed (no self-similar start yet).
 """
 from __future__ import annotations
 
