@@ -1,5 +1,17 @@
 """Prototype of issue 41: adhesion as one forward march in G and a scalar root in K.
 
+**Status: a private prototype.** :func:`persson_fast.solve_contact` does not use it (no route,
+no public name); nothing here is API and it may change or go. The measured status (one
+thread, CPU time per pressure; the table and how it was measured are in the docstring of
+``benchmarks/march_prototype.py``): errors 0.2-0.9 rtol at rtol 1e-4 to 1e-6 on the
+self-affine and seed scenes, but the error estimate falls below the error on the self-affine
+scene at rtol 1e-6 (estimate/error 0.42) and is pessimistic on the seed scene at p = 0
+(tests/test_adhesion_march.py, the strict xfail); 0.10x to 19x today's speed (slower than
+today at rtol 1e-6 where there is no sign change of gamma_eff). With very weak adhesion
+(U_el/dgamma above ~1e14, where the rounding of K ~ -U_el/dgamma is the size of A) Phi is
+quantised at K's rounding; the root then stops on a bracket whose end areas agree to the
+tolerance (the area is resolved, K only to its rounding; tested down to dgamma 1e-30).
+
 Seed Eq. 9, A(zeta) gamma_eff(zeta) = A(zeta1) dgamma - U_el(zeta), with
 U_el(zeta) = U_el(1) - J(zeta) and J(zeta) = (pi E*/2) int_{q0}^{zeta q0} q^2 C F(A) dq:
 
@@ -166,6 +178,7 @@ def _solve_root(level, pts, tol_rel, k_min, k_max, max_iter=60):
         note(k, f, a)
     width0 = None
     stall = 0
+    n_expand = 0
     for it in range(max_iter):
         (ka, fa, aa), (kb, fb, ab) = pts[-2], pts[-1]
         s_phi = (fb - fa) / (kb - ka) if kb != ka else np.nan
@@ -196,16 +209,24 @@ def _solve_root(level, pts, tol_rel, k_min, k_max, max_iter=60):
                 k = 0.5 * (lo + hi)
                 stall = 0
                 width0 = width
-        elif not np.isfinite(k):
-            raise RuntimeError("Phi: no slope and no bracket")
+        else:
+            # no bracket yet. K + j(zeta1) is a difference of two numbers of size
+            # ~U_el(1)/dgamma: with weak adhesion (U_el/dgamma ~ 1e19 at dgamma 1e-20) Phi is
+            # quantised at K's rounding (thousands, against A ~ 1e-2), the secant slope is
+            # noise or NaN (the same K twice), and steps of a few ulps stay on the side where
+            # the onset's j increments round away (Phi = -A). Phi(k_min) <= 0 <= Phi(k_max):
+            # where the secant step is NaN, goes away from the sign change (down where Phi < 0)
+            # or is below 4 ulps of K, step towards the sign change by 64 ulps, 4 times more
+            # with each such step, so that a bracket is found in a few marches
+            up = fb < 0.0 if fb != 0.0 else (np.isfinite(k) and k > kb)
+            ulp = np.spacing(max(abs(kb), 1e-300))
+            if not np.isfinite(k) or (k > kb) != up or abs(k - kb) < 4.0 * ulp:
+                d = 64.0 * ulp * 4.0 ** n_expand
+                n_expand += 1
+                k = kb + (d if up else -d)
         k = min(max(k, k_min), k_max)
-        # K + j(zeta1) is a difference of two numbers of size ~U_el(1)/dgamma: with weak
-        # adhesion (U_el/dgamma >> 1) a secant step can be below K's rounding. Step at least
-        # a few ulps (towards the step's direction) so that the bracket closes instead of the
-        # same K being evaluated twice
-        ulp = 4.0 * np.spacing(max(abs(kb), abs(k), 1e-300))
-        if abs(k - kb) < ulp:
-            k = min(max(kb + math.copysign(ulp, k - kb if k != kb else -fb), k_min), k_max)
+        if any(k == t[0] for t in pts):
+            raise RuntimeError(f"Phi: K = {k!r} evaluated twice (no progress of the root)")
         f, a, _ = level.phi(k)
         pts.append((k, f, a))
         note(k, f, a)
