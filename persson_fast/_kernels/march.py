@@ -1,5 +1,11 @@
 """Adhesion as one causal forward march in G for a given scalar K (issue 41), ``@njit``.
 
+**Status: a private prototype**, driven only by :mod:`persson_fast.adhesion.march`
+(:func:`~persson_fast.adhesion.march.solve_march`); :func:`persson_fast.solve_contact` does not
+use it. Its measured accuracy and speed against today's solver are in the table of
+``benchmarks/march_prototype.py`` (errors 0.2-0.9 rtol at rtol 1e-4 to 1e-6, error estimate
+not yet always covering the error, 0.10x to 19x today's speed).
+
 Seed Eq. 9 with U_el(zeta) = U_el(1) - J(zeta) reads
 
     A(zeta) gamma_eff(zeta) = dgamma K + J(zeta),   K = A(zeta1) - U_el(1)/dgamma,
@@ -14,7 +20,7 @@ So for a given K the wall at G depends only on what the march has computed (j, f
 coarser scales) and on the current area A(G) (a local implicit relation). :func:`march_k`
 marches the diffusion from zeta = 1 to zeta1 once and returns A(zeta1) and j(zeta1); the
 fixed point of Eqs. 8-9 is the scalar root Phi(K) = K + j(zeta1; K) - A(zeta1; K) = 0
-(:mod:`persson_fast.adhesion_march`).
+(the driver :mod:`persson_fast.adhesion.march`).
 
 Scheme (scaled by the start distance y0 = sigma0 + sigma_a(G=0), as the similarity grid of
 :mod:`.similarity`): xi = y / w, w^2 = 1 + 4 g, y = sigma + sigma_a the distance to the wall,
