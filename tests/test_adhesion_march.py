@@ -1,4 +1,10 @@
-"""Issue 41 prototype: the scalar form of the adhesive fixed point and the forward march."""
+"""The prototype of a forward-march adhesive solver (persson_fast.adhesion.march, not used by
+solve_contact): the scalar form of the adhesive fixed point and the march, against today's
+solver and the closed form without adhesion.
+
+The whole file runs in the slow suite: compiling the march's kernels costs about a minute of
+CPU on a cold cache, which the CI suite does not pay for a prototype (cached, the file takes
+about 4 s, the tight test about 80 s)."""
 import numpy as np
 import pytest
 from scipy.special import erf
@@ -8,6 +14,8 @@ from persson_fast.adhesion import march as am
 
 E_SEED = pf.seed_e_star()
 DG = pf.SEED_WORK_OF_ADHESION
+
+pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module")
