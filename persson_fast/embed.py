@@ -221,6 +221,23 @@ def diffusion_solve(G: np.ndarray, sigma_a: np.ndarray, sigma0: float, rtol: flo
     -------
     int
         The status (0 ok; see ``STATUS_MESSAGES``).
+
+    See Also
+    --------
+    persson_fast.embed.diffusion_area : The area alone.
+    persson_fast.solve_diffusion : The same from Python.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> G = np.linspace(0.0, 1.0, 11)
+    >>> outs = [np.empty(G.size) for _ in range(5)]
+    >>> embed.diffusion_solve(G, np.zeros_like(G), 1.0, 1e-6, 2, *outs)
+    0
+    >>> print(np.round(outs[0][[0, -1]], 6))
+    [1.     0.5205]
     """
     s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
     n = G.shape[0]
@@ -264,6 +281,24 @@ def diffusion_area(G: np.ndarray, sigma_a: np.ndarray, sigma0: float,
     status : int
         0 ok, else a code of ``STATUS_MESSAGES`` (the argument codes in the table of this
         module's docstring).
+
+    See Also
+    --------
+    persson_fast.embed.diffusion_solve : Every output of the solve.
+    persson_fast.embed.elastoplastic_area : With a yield wall.
+    persson_fast.solve_diffusion : The same from Python, many pressures.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> G = np.linspace(0.0, 1.0, 11)
+    >>> area, status = embed.diffusion_area(G, np.zeros_like(G), 1.0, 1e-6)
+    >>> print(f"{area:.6f}", status)
+    0.520500 0
+    >>> print(f"{pf.images_area(1.0, 1.0):.6f}")
+    0.520500
     """
     s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
     if s != _status.OK:
@@ -337,6 +372,24 @@ def elastoplastic_area(G: np.ndarray, sigma_a: np.ndarray, sigma_y: np.ndarray,
         A_pl(G[-1])/A0, the yielded area; NaN for a bad argument. [-]
     status : int
         0 ok, else a code of ``STATUS_MESSAGES``.
+
+    See Also
+    --------
+    persson_fast.plastic_area : The closed form of a constant yield stress.
+    persson_fast.solve_diffusion : The same from Python (``sigma_y``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> G = np.linspace(0.0, 1.0, 11)
+    >>> el, pl, status = embed.elastoplastic_area(G, np.zeros_like(G), np.full(G.size, 2.0),
+    ...                                           1.0, 1e-6)
+    >>> print(f"{el:.5f} {pl:.5f}", status)
+    0.10798 0.44601 0
+    >>> print(np.round(pf.plastic_area(1.0, 1.0, 2.0), 5))
+    [0.10798 0.44601]
     """
     s = _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol)
     if s != _status.OK:
@@ -384,6 +437,27 @@ def adhesive_scene(surface: Surface | Scene, *, e_star: float | None = None,
     tuple
         (G, c, wa, wb, G_fine, c_fine, wa_fine, wb_fine, gamma_s, scale): the scaled kernel
         inputs on the two nested grids, gamma_s (< 0 for S = 1) and the stress scale [Pa].
+
+    Raises
+    ------
+    ValueError
+        For bad input (as :func:`persson_fast.solve_contact`), a ``work_of_adhesion``
+        that is not > 0, or a Scene with a yield wall.
+
+    See Also
+    --------
+    persson_fast.embed.adhesive_area : Solves one pressure of the scene.
+    persson_fast.solve_contact : The same with error control, from Python.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> scene = embed.adhesive_scene(pf.seed_scene(), e_star=pf.seed_e_star(),
+    ...                              work_of_adhesion=0.06, rtol=1e-3)
+    >>> len(scene)
+    10
     """
     from .scene import _check_rtol, _check_scene_args, unpack_adhesive_scene
 
@@ -467,6 +541,22 @@ def adhesive_area(scene: tuple, pressure: float, rtol: float) -> tuple[float, in
         A(zeta1)/A0; NaN for a bad argument. [-]
     status : int
         0 ok, else a code of ``STATUS_MESSAGES``.
+
+    See Also
+    --------
+    persson_fast.embed.adhesive_scene : Builds its ``scene``.
+    persson_fast.solve_contact : The same with error control, from Python.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> scene = embed.adhesive_scene(pf.seed_scene(), e_star=pf.seed_e_star(),
+    ...                              work_of_adhesion=0.06, rtol=1e-3)
+    >>> area, status = embed.adhesive_area(scene, 1e6, 1e-3)
+    >>> print(f"{area:.3f}", status)
+    0.495 0
     """
     s = _adhesive_args_status(scene, pressure, rtol)
     if s != _status.OK:
