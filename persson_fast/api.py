@@ -610,7 +610,7 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     ValueError
         For a bad argument (the message names it, the rule, the unit and the value), and
         for a combination of the scene's pieces that no route solves
-        (:data:`persson_fast.plan.REFUSALS`):
+        (the table ``persson_fast.plan.REFUSALS``):
 
     {refusals}
 
