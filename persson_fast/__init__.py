@@ -1,8 +1,14 @@
-"""persson_fast: Persson's contact-mechanics theory, fast and exact.
+"""persson_fast: Persson's contact-mechanics theory, fast and error-controlled.
 
 The stress distribution P(sigma, zeta) obeys a diffusion equation in magnification with an
-absorbing wall at -sigma_a(zeta); the real contact area is A(zeta1)/A0. See the README for the
-conventions (SI units, Persson's isotropic PSD convention).
+absorbing wall at -sigma_a(zeta); the real contact area is A(zeta1)/A0. The closed form is
+returned where one exists; otherwise a compiled solver estimates its error and refines until
+the estimate is below ``rtol``, or flags the result; the estimates are measured, not proven
+(the documentation's validation page lists the few cases found outside ``rtol`` with status
+0, at most 1.5 rtol). Units are SI throughout and the spectrum C(q) follows
+Persson's isotropic convention (h_rms^2 = 2 pi int q C(q) dq): see "Units and conventions"
+in the documentation's user guide (docs/user-guide/contact-area.md) and the API reference
+(docs/api/index.rst).
 """
 from .analytic.images import contact_area_no_adhesion, images_area, images_density, images_moments
 from .analytic.linear import (linear_boundary_area, linear_boundary_density,

@@ -45,7 +45,8 @@ from numba.extending import intrinsic
 __all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange",
            "kernel_source_stamp", "CallingKernel", "function_at", "jit_address",
            "callable_with", "compile_for", "in_disk_cache", "compile_beside",
-           "compiling_beside", "announce_compile", "logger"]
+           "compiling_beside", "announce_compile", "compile_note", "FIRST_CALL_COST",
+           "FIRST_CALL_MEASURE", "logger"]
 
 #: the package's logger: it says (INFO) when a first call compiles kernels
 logger = logging.getLogger("persson_fast")
@@ -305,11 +306,21 @@ def in_disk_cache(dispatcher, signature) -> bool:
 
 _announced = set()
 
+#: what a first call on a machine costs, in the words of the compile note, README.md and the
+#: install page (a test keeps the three in agreement): from an empty cache on a shared 2-core
+#: machine the main job took 39-48 s of CPU and a first adhesive solve_contact 40-42 s
+#: (docs/user-guide/performance.md); the figure changes with the machine, its load and the
+#: numba version, so the note names the command that measures it where the user is
+FIRST_CALL_COST = "tens of seconds of CPU"
+#: the command that compiles everything and says how long it took on this machine
+FIRST_CALL_MEASURE = "persson-fast info"
 
-def announce_compile(what: str, seconds: float, jobs) -> bool:
+
+def announce_compile(what: str, jobs) -> bool:
     """Log once per process, at INFO on the ``persson_fast`` logger, that ``what`` compiles
     its kernels now (``jobs``: (dispatcher, signature or argument types) pairs, one missing
-    from the disk cache suffices): "compiling kernels for <what>, once per machine, about <seconds> s". True when
+    from the disk cache suffices): "compiling kernels for <what>, once per machine:
+    <FIRST_CALL_COST> (`<FIRST_CALL_MEASURE>` measures it on this machine); ...". True when
     it logged. The command line prints these messages; an API user sees them with
     ``logging.basicConfig(level=logging.INFO)``."""
     if what in _announced or numba.config.DISABLE_JIT:
@@ -318,9 +329,15 @@ def announce_compile(what: str, seconds: float, jobs) -> bool:
         _announced.add(what)
         return False
     _announced.add(what)
-    logger.info("compiling kernels for %s, once per machine, about %.0f s (later calls and "
-                "processes load them from the disk cache)", what, seconds)
+    logger.info(compile_note(what))
     return True
+
+
+def compile_note(what: str) -> str:
+    """The text :func:`announce_compile` logs for ``what``."""
+    return (f"compiling kernels for {what}, once per machine: {FIRST_CALL_COST} "
+            f"(`{FIRST_CALL_MEASURE}` measures it on this machine); later calls and processes "
+            f"load them from the disk cache")
 
 
 def _usable_cpus() -> int:

@@ -63,6 +63,18 @@ def warmup(prange: bool = False) -> dict:
     dict
         Seconds spent per part: ``serial`` (the sweep kernels), ``prange`` (with
         ``prange=True``), ``adhesion``, ``separation``, ``strip``, ``adhesion_yield``. [s]
+
+    See Also
+    --------
+    persson_fast.solve_contact : Compiles what it needs on its first call.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> timings = pf.warmup()
+    >>> sorted(timings)
+    ['adhesion', 'adhesion_yield', 'separation', 'serial', 'strip']
     """
     # on a cold cache the adhesive fixed point compiles in a second process meanwhile
     with compiling_beside(ADHESIVE_JOBS):
@@ -248,6 +260,20 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
     -------
     DiffusionResult
 
+    Raises
+    ------
+    ValueError
+        For bad input, naming the argument, the rule, the unit and the value (G not
+        finite or decreasing, a wall of another length, an unknown ``method``, ``rtol``
+        outside [1e-12, 0.1], ...).
+
+    See Also
+    --------
+    persson_fast.DiffusionResult : What it returns.
+    persson_fast.images_area : The closed form without walls that move.
+    persson_fast.solve_contact : The same from a surface and a scene.
+    persson_fast.embed.diffusion_area : One pressure from numba code.
+
     Notes
     -----
     dP/dG = d2P/dsigma2 with P(sigma, 0) = delta(sigma - sigma0) and P(-sigma_a, G) = 0
@@ -271,6 +297,15 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
     actual deviations: 1-5x the sampling error where measured), and a result whose estimate
     then exceeds rtol is flagged (status 15). ``timings["sample_wall"]`` is the sampling
     time; ``sigma_a`` of the result is the callable at G.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> G = np.linspace(0.0, 1.0, 11)
+    >>> r = pf.solve_diffusion(G, [0.5, 1.0], sigma_a=0.1 * G, rtol=1e-6)
+    >>> print(r.method, bool(np.all(r.success)), np.round(r.area[:, -1], 5))
+    cn True [0.29462 0.54436]
     """
     if method is None:
         method = _default_diffusion_method(sigma_y, level, kinks)
@@ -626,9 +661,17 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     ValueError
         For a bad argument (the message names it, the rule, the unit and the value), and
         for a combination of the scene's pieces that no route solves
-        (:data:`persson_fast.plan.REFUSALS`):
+        (the table ``persson_fast.plan.REFUSALS``):
 
     {refusals}
+
+    See Also
+    --------
+    persson_fast.Scene : A scene to pass in place of the keywords.
+    persson_fast.ContactResult : What it returns.
+    persson_fast.pull_off : The pull-off stress.
+    persson_fast.solve_separation : Mean separation and stiffness.
+    persson_fast.scan : Many scenes at once.
 
     Notes
     -----
@@ -643,6 +686,19 @@ def solve_contact(surface: Surface | Scene, pressure: ArrayLike, *,
     Without adhesion the whole surface enters through G(zeta) (seed Eqs. 4-7); the area is
     erf(p / (2 sqrt G1)) exactly, which "analytic" and "auto" return; "cn" solves the
     diffusion numerically (the same kernel the adhesive problem uses).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> p = np.geomspace(1e4, 1e7, 4)
+    >>> r = pf.solve_contact(s, p, e_star=1e9)
+    >>> print(r.method, np.round(r.area, 5))
+    analytic [8.000e-05 8.000e-04 8.020e-03 8.006e-02]
+    >>> ra = pf.solve_contact(s, p, e_star=1e9, work_of_adhesion=0.05, rtol=1e-3)
+    >>> print(ra.method, bool(np.all(ra.success)), np.round(ra.area, 3))
+    cn True [0.    0.001 0.014 0.143]
     """
     def check_run_args():
         check_parallel(parallel)

@@ -120,18 +120,23 @@ import math
 
 import numpy as np
 
-from ._jit import njit_serial
+from ._jit import njit_serial as _njit_serial
 from ._kernels import status as _status
-from ._kernels.adhesion import (DEFAULT_M_HIST, DEFAULT_MAX_ITER, DEFAULT_N_DAMP, DEFAULT_OMEGA,
-                               solve_adhesive_one)
+from ._kernels.adhesion import DEFAULT_M_HIST as _DEFAULT_M_HIST
+from ._kernels.adhesion import DEFAULT_MAX_ITER as _DEFAULT_MAX_ITER
+from ._kernels.adhesion import DEFAULT_N_DAMP as _DEFAULT_N_DAMP
+from ._kernels.adhesion import DEFAULT_OMEGA as _DEFAULT_OMEGA
+from ._kernels.adhesion import solve_adhesive_one as _solve_adhesive_one
 from ._kernels.contact_law import (law_pressure, law_pressure_stiffness, law_separation,
                                    law_status, law_stiffness, law_sweep)
-from ._kernels.similarity import solve_one
-from ._kernels.strip import N_DAMP as STRIP_N_DAMP
-from ._kernels.strip import solve_strip
-from .adhesion.zeta_grid import _scene_arrays, adhesion_zeta, refine_zeta
+from ._kernels.similarity import solve_one as _solve_one
+from ._kernels.strip import N_DAMP as _STRIP_N_DAMP
+from ._kernels.strip import solve_strip as _solve_strip
+from .adhesion.zeta_grid import _scene_arrays
+from .adhesion.zeta_grid import adhesion_zeta as _adhesion_zeta
+from .adhesion.zeta_grid import refine_zeta as _refine_zeta
 from .separation.contact_law import ContactLaw, contact_law
-from .scene import DETACHMENT_PREFACTOR
+from .scene import DETACHMENT_PREFACTOR as _DETACHMENT_PREFACTOR
 
 __all__ = ["diffusion_area", "diffusion_solve", "elastoplastic_area", "adhesive_scene", "adhesive_area",
            "contact_law", "ContactLaw", "law_pressure", "law_stiffness",
@@ -145,12 +150,12 @@ RTOL_MIN = 1e-12
 RTOL_MAX = 0.1
 
 
-@njit_serial
+@_njit_serial
 def _rtol_ok(rtol):
     return RTOL_MIN <= rtol <= RTOL_MAX      # False for NaN
 
 
-@njit_serial
+@_njit_serial
 def _times_ok(G, n_min):
     """G holds >= n_min points, G[0] >= 0, non-decreasing, finite (False for any NaN)."""
     n = G.shape[0]
@@ -162,7 +167,7 @@ def _times_ok(G, n_min):
     return G[n - 1] < math.inf
 
 
-@njit_serial
+@_njit_serial
 def _finite_ok(x, n, lower):
     """x holds n finite values, each >= lower (-inf: any)."""
     if x.shape[0] != n:
@@ -173,7 +178,7 @@ def _finite_ok(x, n, lower):
     return True
 
 
-@njit_serial
+@_njit_serial
 def _diffusion_args_status(G, sigma_a, sigma0, rtol):
     """The first failing argument rule of a diffusion solve (see the module table), or 0."""
     if not _rtol_ok(rtol):
@@ -187,7 +192,7 @@ def _diffusion_args_status(G, sigma_a, sigma0, rtol):
     return _status.OK
 
 
-@njit_serial
+@_njit_serial
 def diffusion_solve(G: np.ndarray, sigma_a: np.ndarray, sigma0: float, rtol: float,
                     n_damp: int, out_area: np.ndarray, out_load: np.ndarray,
                     out_detached_area: np.ndarray, out_detached_load: np.ndarray,
@@ -221,6 +226,23 @@ def diffusion_solve(G: np.ndarray, sigma_a: np.ndarray, sigma0: float, rtol: flo
     -------
     int
         The status (0 ok; see ``STATUS_MESSAGES``).
+
+    See Also
+    --------
+    persson_fast.embed.diffusion_area : The area alone.
+    persson_fast.solve_diffusion : The same from Python.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> G = np.linspace(0.0, 1.0, 11)
+    >>> outs = [np.empty(G.size) for _ in range(5)]
+    >>> embed.diffusion_solve(G, np.zeros_like(G), 1.0, 1e-6, 2, *outs)
+    0
+    >>> print(np.round(outs[0][[0, -1]], 6))
+    [1.     0.5205]
     """
     s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
     n = G.shape[0]
@@ -235,11 +257,11 @@ def diffusion_solve(G: np.ndarray, sigma_a: np.ndarray, sigma0: float, rtol: flo
         out_detached_load[:] = np.nan
         out_error[:] = np.nan
         return s
-    return solve_one(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load, out_detached_area,
-                     out_detached_load, out_error)
+    return _solve_one(G, sigma_a, sigma0, rtol, n_damp, out_area, out_load,
+                      out_detached_area, out_detached_load, out_error)
 
 
-@njit_serial
+@_njit_serial
 def diffusion_area(G: np.ndarray, sigma_a: np.ndarray, sigma0: float,
                    rtol: float) -> tuple[float, int]:
     """(A(G[-1]) / A0, status) of one pressure with the wall at -sigma_a(G).
@@ -264,6 +286,24 @@ def diffusion_area(G: np.ndarray, sigma_a: np.ndarray, sigma0: float,
     status : int
         0 ok, else a code of ``STATUS_MESSAGES`` (the argument codes in the table of this
         module's docstring).
+
+    See Also
+    --------
+    persson_fast.embed.diffusion_solve : Every output of the solve.
+    persson_fast.embed.elastoplastic_area : With a yield wall.
+    persson_fast.solve_diffusion : The same from Python, many pressures.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> G = np.linspace(0.0, 1.0, 11)
+    >>> area, status = embed.diffusion_area(G, np.zeros_like(G), 1.0, 1e-6)
+    >>> print(f"{area:.6f}", status)
+    0.520500 0
+    >>> print(f"{pf.images_area(1.0, 1.0):.6f}")
+    0.520500
     """
     s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
     if s != _status.OK:
@@ -274,11 +314,11 @@ def diffusion_area(G: np.ndarray, sigma_a: np.ndarray, sigma0: float,
     da = np.empty(n)
     dl = np.empty(n)
     er = np.empty(n)
-    s = solve_one(G, sigma_a, sigma0, rtol, 2, a, ld, da, dl, er)
+    s = _solve_one(G, sigma_a, sigma0, rtol, 2, a, ld, da, dl, er)
     return a[n - 1], s
 
 
-@njit_serial
+@_njit_serial
 def _no_jump(G, v):
     for k in range(1, G.shape[0]):
         if G[k] == G[k - 1] and v[k] != v[k - 1]:
@@ -286,7 +326,7 @@ def _no_jump(G, v):
     return True
 
 
-@njit_serial
+@_njit_serial
 def _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol):
     """The first failing argument rule of a two-wall solve (see the module table), or 0."""
     s = _diffusion_args_status(G, sigma_a, sigma0, rtol)
@@ -305,7 +345,7 @@ def _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol):
     return _status.OK
 
 
-@njit_serial
+@_njit_serial
 def elastoplastic_area(G: np.ndarray, sigma_a: np.ndarray, sigma_y: np.ndarray,
                        sigma0: float, rtol: float) -> tuple[float, float, int]:
     """(A_el, A_pl, status) at G[-1] of one pressure between two walls.
@@ -337,6 +377,24 @@ def elastoplastic_area(G: np.ndarray, sigma_a: np.ndarray, sigma_y: np.ndarray,
         A_pl(G[-1])/A0, the yielded area; NaN for a bad argument. [-]
     status : int
         0 ok, else a code of ``STATUS_MESSAGES``.
+
+    See Also
+    --------
+    persson_fast.plastic_area : The closed form of a constant yield stress.
+    persson_fast.solve_diffusion : The same from Python (``sigma_y``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> G = np.linspace(0.0, 1.0, 11)
+    >>> el, pl, status = embed.elastoplastic_area(G, np.zeros_like(G), np.full(G.size, 2.0),
+    ...                                           1.0, 1e-6)
+    >>> print(f"{el:.5f} {pl:.5f}", status)
+    0.10798 0.44601 0
+    >>> print(np.round(pf.plastic_area(1.0, 1.0, 2.0), 5))
+    [0.10798 0.44601]
     """
     s = _elastoplastic_args_status(G, sigma_a, sigma_y, sigma0, rtol)
     if s != _status.OK:
@@ -350,15 +408,15 @@ def elastoplastic_area(G: np.ndarray, sigma_a: np.ndarray, sigma_y: np.ndarray,
     dl = np.empty(n)
     er = np.empty(n)
     counts = np.zeros(3, dtype=np.int64)
-    s = solve_strip(G, sigma_a, sigma_y, sigma0, rtol, -1, STRIP_N_DAMP, el, ld, pl, pll, da,
-                    dl, er, counts)
+    s = _solve_strip(G, sigma_a, sigma_y, sigma0, rtol, -1, _STRIP_N_DAMP, el, ld, pl, pll,
+                     da, dl, er, counts)
     return el[n - 1], pl[n - 1], s
 
 
 def adhesive_scene(surface: Surface | Scene, *, e_star: float | None = None,
                    work_of_adhesion: float | None = None,
                    energy_correction: float | None = None,
-                   detachment_prefactor: float = DETACHMENT_PREFACTOR,
+                   detachment_prefactor: float = _DETACHMENT_PREFACTOR,
                    rtol: float = 1e-6) -> tuple:
     """The plain-array scene of :func:`adhesive_area` (validated, built once in Python).
 
@@ -384,6 +442,27 @@ def adhesive_scene(surface: Surface | Scene, *, e_star: float | None = None,
     tuple
         (G, c, wa, wb, G_fine, c_fine, wa_fine, wb_fine, gamma_s, scale): the scaled kernel
         inputs on the two nested grids, gamma_s (< 0 for S = 1) and the stress scale [Pa].
+
+    Raises
+    ------
+    ValueError
+        For bad input (as :func:`persson_fast.solve_contact`), a ``work_of_adhesion``
+        that is not > 0, or a Scene with a yield wall.
+
+    See Also
+    --------
+    persson_fast.embed.adhesive_area : Solves one pressure of the scene.
+    persson_fast.solve_contact : The same with error control, from Python.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> scene = embed.adhesive_scene(pf.seed_scene(), e_star=pf.seed_e_star(),
+    ...                              work_of_adhesion=0.06, rtol=1e-3)
+    >>> len(scene)
+    10
     """
     from .scene import _check_rtol, _check_scene_args, unpack_adhesive_scene
 
@@ -399,27 +478,27 @@ def adhesive_scene(surface: Surface | Scene, *, e_star: float | None = None,
         raise ValueError(f"work_of_adhesion must be > 0 [J/m^2] for an adhesive scene; got "
                          f"work_of_adhesion = {work_of_adhesion!r} (use diffusion_area without "
                          "adhesion)")
-    zeta = adhesion_zeta(surface, rtol)
+    zeta = _adhesion_zeta(surface, rtol)
     Gc, cc, wac, wbc, scale, _ = _scene_arrays(surface, zeta, e, dg, beta)
     # the nested grids share their end points, hence the stress scale
-    Gf, cf, waf, wbf, _, _ = _scene_arrays(surface, refine_zeta(zeta), e, dg, beta)
+    Gf, cf, waf, wbf, _, _ = _scene_arrays(surface, _refine_zeta(zeta), e, dg, beta)
     gamma_s = -1.0 if energy_correction is None else float(energy_correction)
     return (Gc, cc, wac, wbc, Gf, cf, waf, wbf, gamma_s, float(scale))
 
 
-@njit_serial
+@_njit_serial
 def _fixed_point_area(G, c, wa, wb, gamma_s, sigma0, rtol):
     n = G.shape[0]
     x0 = np.full(n, -1.0)
     outs = np.empty((8, n))
-    s, it, res = solve_adhesive_one(0, G, c, wa, wb, gamma_s, sigma0, rtol,
-                                    DEFAULT_N_DAMP, DEFAULT_MAX_ITER, DEFAULT_M_HIST,
-                                    DEFAULT_OMEGA, x0, outs[0], outs[1], outs[2], outs[3],
-                                    outs[4], outs[5], outs[6], outs[7])
+    s, it, res = _solve_adhesive_one(0, G, c, wa, wb, gamma_s, sigma0, rtol,
+                                     _DEFAULT_N_DAMP, _DEFAULT_MAX_ITER, _DEFAULT_M_HIST,
+                                     _DEFAULT_OMEGA, x0, outs[0], outs[1], outs[2], outs[3],
+                                     outs[4], outs[5], outs[6], outs[7])
     return outs[0, n - 1], s
 
 
-@njit_serial
+@_njit_serial
 def _scene_grid_ok(G, c, wa, wb):
     """One grid of a scene: G of >= 2 points (as _times_ok), c (n,), wa, wb (n - 1,), all
     finite and >= 0."""
@@ -428,7 +507,7 @@ def _scene_grid_ok(G, c, wa, wb):
             and _finite_ok(wb, n - 1, 0.0))
 
 
-@njit_serial
+@_njit_serial
 def _adhesive_args_status(scene, pressure, rtol):
     """The first failing argument rule of adhesive_area (see the module table), or 0."""
     Gc, cc, wac, wbc, Gf, cf, waf, wbf, gamma_s, scale = scene
@@ -443,7 +522,7 @@ def _adhesive_args_status(scene, pressure, rtol):
     return _status.OK
 
 
-@njit_serial
+@_njit_serial
 def adhesive_area(scene: tuple, pressure: float, rtol: float) -> tuple[float, int]:
     """(A(zeta1) / A0, status) of one nominal pressure (tension < 0 allowed).
 
@@ -467,6 +546,22 @@ def adhesive_area(scene: tuple, pressure: float, rtol: float) -> tuple[float, in
         A(zeta1)/A0; NaN for a bad argument. [-]
     status : int
         0 ok, else a code of ``STATUS_MESSAGES``.
+
+    See Also
+    --------
+    persson_fast.embed.adhesive_scene : Builds its ``scene``.
+    persson_fast.solve_contact : The same with error control, from Python.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> scene = embed.adhesive_scene(pf.seed_scene(), e_star=pf.seed_e_star(),
+    ...                              work_of_adhesion=0.06, rtol=1e-3)
+    >>> area, status = embed.adhesive_area(scene, 1e6, 1e-3)
+    >>> print(f"{area:.3f}", status)
+    0.495 0
     """
     s = _adhesive_args_status(scene, pressure, rtol)
     if s != _status.OK:

@@ -107,11 +107,24 @@ class DiffusionResult:
         The yield wall: the constant, or its values at G (samples or a callable evaluated
         there). [Pa]
 
+    See Also
+    --------
+    persson_fast.solve_diffusion : Returns a DiffusionResult.
+    persson_fast.ContactResult : The result of a contact scene.
+
     Notes
     -----
     With a yield wall solved by "strip", ``error_estimate`` and rtol refer to the real
     contact area A = area + plastic_area (abs(dA) <= rtol A + 1e-12; the grid is refined
     until the estimates of the elastic and plastic parts meet that bound too).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> r = pf.solve_diffusion(np.linspace(0.0, 1.0, 11), [0.5, 1.0])
+    >>> print(r.method, r.area.shape, np.round(r.area[:, -1], 6))
+    cn (2, 11) [0.276326 0.5205  ]
     """
 
     G: np.ndarray
@@ -271,6 +284,20 @@ class ContactResult:
         Stored elastic energy U_el per nominal area at zeta = 1: the closed form without
         adhesion (on first access, as ``separation``), ``elastic_energy_zeta[:, 0]`` with
         it. [J/m^2]
+
+    See Also
+    --------
+    persson_fast.solve_contact : Returns a ContactResult.
+    persson_fast.DiffusionResult : The result of the diffusion alone.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> r = pf.solve_contact(s, [1e5, 1e6], e_star=1e9)
+    >>> print(r.method, bool(np.all(r.success)), np.round(r.area, 5))
+    analytic True [0.0008  0.00802]
     """
 
     pressure: np.ndarray

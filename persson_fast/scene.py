@@ -49,6 +49,20 @@ def default_zeta(surface: Surface, per_decade: int = ZETA_PER_DECADE) -> np.ndar
     -------
     numpy.ndarray
         Increasing magnifications from 1 to zeta1 = q1/q0 exactly. [-]
+
+    See Also
+    --------
+    persson_fast.adhesion_zeta : The grid of an adhesive solve.
+    persson_fast.contact_area_no_adhesion : Evaluates A(zeta) on such a grid.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> z = pf.default_zeta(s)
+    >>> print(z.size, z[0], f"{z[-1]:.4g}")
+    41 1.0 1e+05
     """
     check_not_bool(per_decade, "per_decade", "-")
     zeta1 = surface.q1 / surface.q0
@@ -205,9 +219,23 @@ class Scene:
         The yield wall, with or without adhesion (see ``persson_fast.plasticity``): a
         constant penetration hardness sigma_Y > 0 [Pa], a callable of zeta
         (``hardness_power_law``, ``hardness_nix_gao``, your own), a table (zeta, sigma_Y)
-        (``hardness_table``), or None (default, elastic). ``solve_contact`` and ``scan``
-        take every form; ``pull_off``, the separation and ``embed`` refuse a scene with
-        one.
+        (``hardness_table``), or None (default, elastic). ``solve_contact``, ``scan`` and
+        ``pull_off`` take every form (``pull_off`` then follows the two-wall fixed point's
+        contact branch); the separation (``solve_separation``, ``pressure_at_separation``,
+        ``decay_length``, ``gap_distribution``, ``embed.contact_law``) and
+        ``embed.adhesive_scene`` refuse a scene with one.
+
+    Raises
+    ------
+    ValueError
+        For a parameter that breaks its rule (those of
+        :func:`persson_fast.solve_contact`), naming it.
+
+    See Also
+    --------
+    persson_fast.solve_contact : Takes a Scene in place of the keywords.
+    persson_fast.pull_off : Takes a Scene, with a yield wall too.
+    persson_fast.scan : Takes a Scene.
 
     Notes
     -----
@@ -215,6 +243,19 @@ class Scene:
     including that the scene stays finite in float64) and stored as floats.
     ``solve_contact(scene, pressure, ...)`` equals ``solve_contact(scene.surface, pressure,
     **scene.keywords(), ...)`` bitwise.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> scene = pf.Scene(pf.seed_scene(), e_star=pf.seed_e_star(), work_of_adhesion=0.06)
+    >>> scene.adhesive
+    True
+    >>> sorted(scene.keywords())
+    ['detachment_prefactor', 'e_star', 'energy_correction', 'work_of_adhesion']
+    >>> r = pf.solve_contact(scene, [1e6], rtol=1e-3)
+    >>> print(r.method)
+    cn
     """
 
     surface: object

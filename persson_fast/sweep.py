@@ -24,9 +24,6 @@ PARALLEL_MIN_PRESSURES = 4
 #: blocks of rows per thread handed to the pool: more blocks balance better, each costs a
 #: kernel call (~10 us)
 BLOCKS_PER_THREAD = 4
-#: the first sweep of a grid method on a machine compiles it (measured on a 2-core Intel
-#: Xeon: "cn" with its grid solver 7.4 s)
-SWEEP_COMPILE_SECONDS = 8.0
 #: the values of ``parallel`` a caller may pass
 PARALLEL_CHOICES = (None, False, True, "threads", "prange")
 
@@ -331,8 +328,8 @@ def _warm(method, kernel) -> None:
     if hasattr(kernel, "_cache"):             # a disk-cached serial sweep
         import numba
 
-        announce_compile(f"method {method!r}", SWEEP_COMPILE_SECONDS,
-                         [(kernel, tuple(numba.typeof(a) for a in args))])
+        # the first sweep of a grid method on a machine compiles it
+        announce_compile(f"method {method!r}", [(kernel, tuple(numba.typeof(a) for a in args))])
     kernel(*args)
 
 

@@ -61,13 +61,14 @@ def test_compile_note_on_a_cold_cache(tmp_path):
             "from persson_fast._jit import announce_compile\n"
             "from persson_fast._kernels.adhesion import fixed_point, FIXED_POINT_SIGNATURE\n"
             "jobs = [(fixed_point, FIXED_POINT_SIGNATURE)]\n"
-            "print(announce_compile('adhesion', 10.0, jobs), announce_compile('adhesion', 10.0, jobs))\n")
+            "print(announce_compile('adhesion', jobs), announce_compile('adhesion', jobs))\n")
     env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
     if os.environ.get("NUMBA_DISABLE_JIT") == "1":
         pytest.skip("compiled code only")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
                          timeout=120, check=True).stdout
-    assert "compiling kernels for adhesion, once per machine, about 10 s" in out
+    assert ("compiling kernels for adhesion, once per machine: tens of seconds of CPU "
+            "(`persson-fast info` measures it on this machine)") in out
     assert out.strip().endswith("True False")
 
 
@@ -79,8 +80,8 @@ def test_no_compile_note_on_a_warm_cache():
 
     pf.solve_contact(*_scene()[:1], [1e6], e_star=1e9, work_of_adhesion=0.05, rtol=1e-3)
     _announced.discard("warm check")
-    assert not announce_compile("warm check", 1.0, [(fixed_point, FIXED_POINT_SIGNATURE),
-                                                    (_solve_grid_tol, GRID_SIGNATURE)])
+    assert not announce_compile("warm check", [(fixed_point, FIXED_POINT_SIGNATURE),
+                                               (_solve_grid_tol, GRID_SIGNATURE)])
 
 
 def test_quiet_flag_parses():

@@ -131,6 +131,12 @@ def law_status(law: tuple) -> int:
     int
         ``OK`` (0) or ``BAD_LAW`` (21).
 
+    See Also
+    --------
+    persson_fast.embed.law_pressure : Checks the table too, at every call.
+    persson_fast.embed.law_sweep : Checks it once for many separations.
+    persson_fast.embed.STATUS_MESSAGES : What each code means.
+
     Notes
     -----
     The rules: five arrays of one length n >= 2; v = ln u strictly increasing and y = ln p
@@ -152,6 +158,19 @@ def law_status(law: tuple) -> int:
     spoils K between nodes only); a table of another scene, a subset of a
     table's nodes, or a consistent change of units (ln p and ln K shifted by one constant,
     or ln u shifted and ln K shifted back) is a valid table of another law.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> embed.law_status(law.table)
+    0
+    >>> bad = (law.table[0][::-1].copy(),) + law.table[1:]
+    >>> embed.law_status(bad)
+    21
     """
     _table_types(law)
     v, y, dy, z, dz = law
@@ -226,6 +245,26 @@ def law_pressure(law: tuple, u: float) -> tuple[float, int]:
         0 ok; ``BAD_SEPARATION`` (18, p NaN) for u not finite or <= 0;
         ``LAW_EXTRAPOLATED`` (19) below the table's smallest separation; ``BAD_LAW`` (21,
         p NaN) for a table that :func:`law_status` refuses.
+
+    See Also
+    --------
+    persson_fast.embed.law_stiffness : K(u).
+    persson_fast.embed.law_pressure_stiffness : p(u) and K(u).
+    persson_fast.embed.law_separation : u(p), the inverse.
+    persson_fast.embed.law_sweep : Many separations.
+    persson_fast.embed.contact_law : Builds the table.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> u = pf.solve_separation(s, [1e6], e_star=1e9).separation[0]
+    >>> p, status = embed.law_pressure(law.table, u)
+    >>> print(f"{p:.5g} Pa", status)
+    1e+06 Pa 0
     """
     if law_status(law) != OK:
         return math.nan, BAD_LAW
@@ -259,6 +298,24 @@ def law_stiffness(law: tuple, u: float) -> tuple[float, int]:
         The contact stiffness -dp/du per nominal area. [Pa/m]
     status : int
         As :func:`law_pressure`.
+
+    See Also
+    --------
+    persson_fast.embed.law_pressure : p(u).
+    persson_fast.embed.law_pressure_stiffness : p(u) and K(u).
+    persson_fast.embed.contact_law : Builds the table.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> r = pf.solve_separation(s, [1e6], e_star=1e9)
+    >>> k, status = embed.law_stiffness(law.table, r.separation[0])
+    >>> print(f"{k / r.stiffness[0]:.5f}", status)
+    1.00000 0
     """
     _, ln_k, status = law_logs(law, u)
     return math.exp(ln_k), status
@@ -283,6 +340,24 @@ def law_pressure_stiffness(law: tuple, u: float) -> tuple[float, float, int]:
         The contact stiffness -dp/du per nominal area. [Pa/m]
     status : int
         As :func:`law_pressure`.
+
+    See Also
+    --------
+    persson_fast.embed.law_pressure : p(u).
+    persson_fast.embed.law_stiffness : K(u).
+    persson_fast.embed.contact_law : Builds the table.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> u = pf.solve_separation(s, [1e6], e_star=1e9).separation[0]
+    >>> p, k, status = embed.law_pressure_stiffness(law.table, u)
+    >>> print(f"{p:.5g} Pa", status)
+    1e+06 Pa 0
     """
     ln_p, ln_k, status = law_logs(law, u)
     return math.exp(ln_p), math.exp(ln_k), status
@@ -307,6 +382,11 @@ def law_separation(law: tuple, p: float) -> tuple[float, int]:
         0 ok, ``LAW_EXTRAPOLATED`` above the table's pressures, ``BAD_PRESSURE`` (u NaN)
         for p not finite or <= 0.
 
+    See Also
+    --------
+    persson_fast.embed.law_pressure : p(u), the inverse.
+    persson_fast.solve_separation : u(p) from Python.
+
     Notes
     -----
     On a table interval the monotone cubic ln p(ln u) is inverted by Newton's method
@@ -314,6 +394,18 @@ def law_separation(law: tuple, p: float) -> tuple[float, int]:
     below the table's pressures the exponential tail is inverted exactly; above them the
     continuation is, with status ``LAW_EXTRAPOLATED``. p not finite or <= 0: NaN,
     ``BAD_PRESSURE``; a table that breaks a rule of :func:`law_status`: NaN, ``BAD_LAW``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> u, status = embed.law_separation(law.table, 1e6)
+    >>> u_ref = pf.solve_separation(s, [1e6], e_star=1e9).separation[0]
+    >>> print(f"{u / u_ref:.5f}", status)
+    1.00000 0
     """
     if law_status(law) != OK:
         return math.nan, BAD_LAW
@@ -388,10 +480,35 @@ def law_sweep(law: tuple, u: np.ndarray, out_p: np.ndarray, out_k: np.ndarray,
     out_status : numpy.ndarray of int64
         Output of u's length: the status per separation (as :func:`law_pressure`).
 
+    Returns
+    -------
+    None
+        The results are written into ``out_p``, ``out_k`` and ``out_status`` in place.
+
+    See Also
+    --------
+    persson_fast.embed.law_pressure_stiffness : One separation.
+    persson_fast.embed.law_status : The table's check alone.
+    persson_fast.embed.contact_law : Builds the table.
+
     Notes
     -----
     A bad table fills every output with NaN and ``BAD_LAW``; outputs of another length than
     ``u``, with NaN and ``BAD_INPUT``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> u = pf.solve_separation(s, [1e5, 1e6], e_star=1e9).separation
+    >>> out_p, out_k = np.empty(2), np.empty(2)
+    >>> out_status = np.empty(2, dtype=np.int64)
+    >>> embed.law_sweep(law.table, u, out_p, out_k, out_status)
+    >>> print(np.round(out_p), out_status)
+    [ 100000. 1000000.] [0 0]
     """
     n = u.shape[0]
     s = law_status(law)

@@ -255,6 +255,12 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
     RuntimeWarning
         When the estimated error exceeds ``rtol * sigma_c`` or a branch point failed.
 
+    See Also
+    --------
+    persson_fast.solve_contact : The contact area under tension.
+    persson_fast.Scene : A scene to pass in place of the keywords.
+    persson_fast.scan : Pull-off stresses over a grid of scenes.
+
     Notes
     -----
     **Stickiness.** Surfaces brought into full contact and unloaded to p_nom = 0 stick when
@@ -335,6 +341,15 @@ def pull_off(surface: Surface | Scene, *, e_star: float | None = None,
     1.42899e6 +- 1.4e3 Pa at rtol 1e-4, flagged (converged False) where that exceeds rtol.
     Measured (seed scene, rtol 1e-4, 2-core machine): yp08 1.06037e6 +- 80 Pa, wm17
     1.12908e6 +- 49 Pa, 17-29 s with the bracket; at rtol 1e-3 about 1-2 s each.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> sigma_c = pf.pull_off(pf.seed_scene(), e_star=pf.seed_e_star(),
+    ...                      work_of_adhesion=0.06, rtol=1e-3)
+    >>> print(f"{sigma_c / 1e6:.2f} MPa")
+    0.78 MPa
     """
     from ..scene import Scene, _is_default, unpack_adhesive_scene
 

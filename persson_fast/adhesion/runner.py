@@ -111,10 +111,6 @@ def _run(G, c, wa, wb, gamma_s, p_scaled, rtol, parallel, controls, x_init=None,
 
 
 _compile_lock = threading.Lock()
-#: the first adhesive solve on a machine compiles the sweep, the fixed point, its diffusion
-#: step and the grid solver, the grid solver in a second process (measured on a 2-core Intel
-#: Xeon: 9-10 s; one usable CPU: about 15 s)
-ADHESION_COMPILE_SECONDS = 10.0
 #: the diffusion step the ``prange`` sweep links in, for the one the cached sweep calls
 LINKED_STEPS = {elastic_step: elastic_step_linked, yield_step: yield_step_linked}
 
@@ -124,9 +120,10 @@ def _compile_fixed_point(first):
     arguments ``first`` of a one-row sweep: on a cold cache the grid solver (the larger share)
     in a second process while this one compiles the rest
     (:func:`persson_fast._jit.compile_beside`)."""
-    announce_compile("adhesion", ADHESION_COMPILE_SECONDS,
-                     [(fixed_point, FIXED_POINT_SIGNATURE), (first[1], STEP_SIGNATURE),
-                      (_solve_grid_tol, GRID_SIGNATURE)])
+    # the first adhesive solve on a machine compiles the sweep, the fixed point, its diffusion
+    # step and the grid solver (the grid solver in a second process)
+    announce_compile("adhesion", [(fixed_point, FIXED_POINT_SIGNATURE), (first[1], STEP_SIGNATURE),
+                                  (_solve_grid_tol, GRID_SIGNATURE)])
     with compiling_beside([(_solve_grid_tol, GRID_SIGNATURE)]):
         compile_for(fixed_point, FIXED_POINT_SIGNATURE)
         compile_for(first[1], STEP_SIGNATURE)

@@ -69,6 +69,11 @@ def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None =
         spectrum's breakpoints and points spaced in ln(zeta - 1) from ``near_one_min`` to 1
         with ``NEAR_ONE_FRACTION`` of that density (the grid must be fine near 1). [-]
 
+    See Also
+    --------
+    persson_fast.default_zeta : The grid of a scene without adhesion.
+    persson_fast.solve_contact : Takes the grid as ``zeta``.
+
     Notes
     -----
     Breakpoints closer than ``BREAKPOINT_MERGE_RTOL`` (relative) count once, and a
@@ -77,6 +82,14 @@ def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None =
     ``np.logspace`` may put one ulp off the log-spaced points, or a user may give one ulp
     apart) left cells one ulp wide: dq = 0 once scaled to q, NaN weights on the refined grid
     and a wrong, flagged area (issue 12).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> z = pf.adhesion_zeta(pf.seed_scene(), rtol=1e-4)
+    >>> print(z.size, z[0], f"{z[-1]:.4g}")
+    81 1.0 1.114e+05
     """
     for value, name in ((rtol, "rtol"), (per_decade, "per_decade"),
                         (near_one_min, "near_one_min")):

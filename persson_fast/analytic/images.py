@@ -52,12 +52,25 @@ def images_area(pressure: ArrayLike, G: ArrayLike) -> float | np.ndarray:
     ValueError
         If `pressure` is negative or not finite, or `G` is negative or not finite.
 
+    See Also
+    --------
+    persson_fast.images_density : The stress distribution itself.
+    persson_fast.images_moments : Area, load and second moment at once.
+    persson_fast.solve_diffusion : The numerical solve it checks.
+
     Notes
     -----
     Persson, J. Chem. Phys. 115, 3840 (2001): the heat equation
     dP/dG = d2P/dsigma2 with P(0) = delta(sigma - sigma0) and P(sigma = 0) = 0 is solved by the
     image pair (images_density), whose integral over sigma >= 0 is erf(sigma0 / (2 sqrt G)).
     scipy's erf keeps full relative accuracy for small arguments, so tiny areas are exact.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> print(np.round(pf.images_area([0.5, 1.0, 2.0], 1.0), 6))
+    [0.276326 0.5205   0.842701]
     """
     pressure = as_float_array(pressure, "pressure", "Pa")
     _check_no_adhesion_pressure(pressure)
@@ -107,11 +120,24 @@ def images_density(sigma: ArrayLike, pressure: ArrayLike,
     ValueError
         On non-finite `sigma`, negative or non-finite `pressure`, negative or non-finite `G`.
 
+    See Also
+    --------
+    persson_fast.images_area : Its integral over sigma > 0.
+    persson_fast.images_moments : Its moments.
+
     Notes
     -----
     Persson 2001.  The difference of the two Gaussians is written as
     exp(-(sigma-sigma0)^2/4G) * (-expm1(-sigma sigma0 / G)), exact algebra that keeps full
     relative accuracy when sigma sigma0 / G is tiny and never overflows.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> sigma = np.array([0.0, 0.5, 1.0, 2.0])
+    >>> print(np.round(pf.images_density(sigma, 1.0, 1.0), 6))
+    [0.       0.104271 0.178318 0.189963]
     """
     sigma = as_float_array(sigma, "sigma", "Pa")
     check_finite(sigma, "sigma", "Pa")
@@ -167,10 +193,23 @@ def images_moments(pressure: ArrayLike, G: ArrayLike) -> tuple:
     ValueError
         On negative or non-finite `pressure` or `G`.
 
+    See Also
+    --------
+    persson_fast.images_area : The area alone.
+    persson_fast.images_density : The stress distribution.
+
     Notes
     -----
     The second moment follows from the Gaussian integrals of the image pair; every
     term is non-negative, so it is accurate as written.  G = 0 gives (1 or 0, sigma0, sigma0^2).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> area, load, second = pf.images_moments(1.0, 1.0)
+    >>> print(f"{area:.6f} {load:.6f} {second:.6f}")
+    0.520500 1.000000 2.440282
     """
     pressure = as_float_array(pressure, "pressure", "Pa")
     _check_no_adhesion_pressure(pressure)
@@ -220,10 +259,26 @@ def contact_area_no_adhesion(surface: Surface, pressure: ArrayLike, e_star: floa
         On bad `pressure`, `e_star`, `zeta`, a surface with bad q0/q1, or a diffusion time that is
         negative or not finite.
 
+    See Also
+    --------
+    persson_fast.solve_contact : The same area, and the solved cases.
+    persson_fast.images_area : The closed form in the diffusion time.
+
     Notes
     -----
     Persson, J. Chem. Phys. 115, 3840 (2001), Eqs. 4-7 of the seed: all of the
     surface enters through G(zeta) = (pi/4) E*^2 integral_{q0}^{zeta q0} q^3 C(q) dq.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> zeta, area = pf.contact_area_no_adhesion(s, [1e5, 1e6], e_star=1e9)
+    >>> area.shape
+    (2, 64)
+    >>> print(np.round(area[:, -1], 5))
+    [0.0008  0.00802]
     """
     e_star_arr = as_float_array(e_star, "e_star", "Pa", ndim=(0,))
     check_positive(e_star_arr, "e_star", "Pa")

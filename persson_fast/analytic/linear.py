@@ -165,6 +165,13 @@ def linear_boundary_area(pressure: ArrayLike, G: ArrayLike, a: ArrayLike,
     ValueError
         On non-finite input, negative `G`, or `pressure` < -`a`.
 
+    See Also
+    --------
+    persson_fast.linear_boundary_density : The stress distribution.
+    persson_fast.linear_boundary_load : The load in contact.
+    persson_fast.linear_boundary_detachment_rate : The rate at which area detaches.
+    persson_fast.images_area : The resting wall, a = b = 0.
+
     Notes
     -----
     With y = sigma + sigma_a(G) the stress performs a Brownian motion with drift b
@@ -178,6 +185,15 @@ def linear_boundary_area(pressure: ArrayLike, G: ArrayLike, a: ArrayLike,
     of its (positive) derivative by 24-point Gauss-Legendre; the Gaussian factor exp(-(alpha+c)^2)
     takes its exponent (y0 + bG)^2/4G in double-double.  Measured against mpmath: relative error
     < 2e-15 for y0/sqrt(G) in [1e-8, 1e3], abs(b) sqrt(G) <= 50, sqrt(G) from 1 Pa to 1e9 Pa.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> print(np.round(pf.linear_boundary_area(1.0, [0.5, 1.0], 0.2, 0.1), 6))
+    [0.783421 0.627366]
+    >>> print(pf.linear_boundary_area(1.0, 1.0, 0.0, 0.0) == pf.images_area(1.0, 1.0))
+    True
     """
     shape, (p, g, a_, b_), y0 = _linear_inputs(pressure, G, a, b)
     out = np.where(y0 > 0, 1.0, 0.0)
@@ -212,11 +228,23 @@ def linear_boundary_detachment_rate(pressure: ArrayLike, G: ArrayLike, a: ArrayL
     ValueError
         On non-finite input, negative `G`, or `pressure` < -`a`.
 
+    See Also
+    --------
+    persson_fast.linear_boundary_area : The area in contact.
+    persson_fast.linear_boundary_load : The load in contact.
+
     Notes
     -----
     The first-passage-time density of Brownian motion with drift b (variance 2G)
     to the level -y0 (inverse-Gaussian law).  Evaluated as alpha exp(-(alpha+c)^2)/(sqrt(pi) G)
     with alpha = y0/(2 sqrt G), c = b sqrt(G)/2 (no overflow; exact zero far in the tails).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> print(f"{pf.linear_boundary_detachment_rate(1.0, 1.0, 0.2, 0.1):.6f}")
+    0.221864
     """
     shape, (p, g, a_, b_), y0 = _linear_inputs(pressure, G, a, b)
     out = np.zeros(g.shape)
@@ -257,12 +285,25 @@ def linear_boundary_density(sigma: ArrayLike, pressure: ArrayLike, G: ArrayLike,
     ValueError
         On non-finite input, negative `G`, or `pressure` < -`a`.
 
+    See Also
+    --------
+    persson_fast.linear_boundary_area : Its integral over the contact.
+    persson_fast.images_density : The resting wall.
+
     Notes
     -----
     Girsanov + images.  The ratio of the image term to the direct term is exactly
     exp(-y y0 / G), and y - y0 - bG = sigma - sigma0, so the density is evaluated as
     N(sigma - sigma0; 2G) * (-expm1(-y y0 / G)): no overflow of exp(-b y0), full relative
     accuracy next to the wall.  Its integral over y >= 0 is :func:`linear_boundary_area`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> sigma = np.array([-0.2, 0.0, 1.0])
+    >>> print(np.round(pf.linear_boundary_density(sigma, 1.0, 1.0, 0.2, 0.1), 6))
+    [0.022255 0.066419 0.222817]
     """
     sigma = as_float_array(sigma, "sigma", "Pa")
     check_finite(sigma, "sigma", "Pa")
@@ -305,6 +346,12 @@ def linear_boundary_load(pressure: ArrayLike, G: ArrayLike, a: ArrayLike,
     ValueError
         On non-finite input, negative `G`, or `pressure` < -`a`.
 
+    See Also
+    --------
+    persson_fast.linear_boundary_area : The area in contact.
+    persson_fast.linear_boundary_detachment_rate : The rate at which area detaches.
+    persson_fast.images_moments : The resting wall.
+
     Notes
     -----
     Derivation (this module): with y = sigma + sigma_a, integral y P dy over y >= 0 equals
@@ -316,6 +363,13 @@ def linear_boundary_load(pressure: ArrayLike, G: ArrayLike, a: ArrayLike,
     >= 0, so the form sigma0 B + a (B - A) (a >= 0) or y0 B + abs(a) A (a < 0) is a sum of
     non-negative terms whenever sigma0 >= 0 or a < 0; only for a tensile start (sigma0 < 0 < a),
     where L itself may cross zero, is the accuracy absolute (relative to abs(sigma0) B + a (B - A)).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> print(f"{pf.linear_boundary_load(1.0, 1.0, 0.2, 0.1):.6f}")
+    1.092123
     """
     shape, (p, g, a_, b_), y0 = _linear_inputs(pressure, G, a, b)
     out = np.where(y0 > 0, p, 0.0)

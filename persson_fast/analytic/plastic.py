@@ -110,6 +110,11 @@ def plastic_area(pressure: ArrayLike, G: ArrayLike, yield_stress: ArrayLike,
         On non-finite input, negative `pressure` or `G`, `yield_stress` <= 0,
         `pressure` > `yield_stress`, or a bad `n_terms`.
 
+    See Also
+    --------
+    persson_fast.solve_diffusion : The numerical solve with ``sigma_y``.
+    persson_fast.hardness_power_law : A yield stress that varies with the magnification.
+
     Notes
     -----
     Persson, J. Chem. Phys. 115, 3840 (2001): the heat equation on
@@ -123,6 +128,14 @@ def plastic_area(pressure: ArrayLike, G: ArrayLike, yield_stress: ArrayLike,
     A_el = erf(s_el/tau) + sum_{m>=1} (-1)^m [erf((m+s_el)/tau) - erf((m-s_el)/tau)],
     A_pl = sum_{j odd} [erf((j+s)/tau) - erf((j-s)/tau)], each window difference evaluated
     without cancellation (_erf_window).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> elastic, plastic = pf.plastic_area(1.0, 1.0, 2.0)
+    >>> print(f"{elastic:.6f} {plastic:.6f}")
+    0.107977 0.446011
     """
     pressure = as_float_array(pressure, "pressure", "Pa")
     check_nonnegative(pressure, "pressure", "Pa")

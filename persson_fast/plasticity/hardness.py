@@ -238,8 +238,41 @@ def hardness_power_law(sigma_y0: float, exponent: float) -> PowerLawHardness:
 
     Parameters
     ----------
-    sigma_y0 : float -- the macroscopic hardness (zeta = 1), > 0. [Pa]
-    exponent : float -- n, finite. [-]
+    sigma_y0 : float
+        The macroscopic hardness (zeta = 1), > 0. [Pa]
+    exponent : float
+        n, finite. [-]
+
+    Returns
+    -------
+    callable
+        The law sigma_Y(zeta) = sigma_y0 zeta^n, vectorised over zeta [-] -> [Pa] (a frozen
+        record with the fields ``sigma_y0`` and ``exponent``), to pass as ``hardness`` to
+        :func:`persson_fast.solve_contact`, :func:`persson_fast.pull_off`,
+        :func:`persson_fast.scan` or a :class:`persson_fast.Scene`.
+
+    Raises
+    ------
+    ValueError
+        If ``sigma_y0`` is not finite and > 0 or ``exponent`` is not finite.
+
+    See Also
+    --------
+    persson_fast.hardness_nix_gao : The indentation size effect.
+    persson_fast.hardness_table : A hardness given on magnifications.
+    persson_fast.solve_contact : Takes it as ``hardness``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> h = pf.hardness_power_law(1e7, 0.2)
+    >>> print(np.round(h(np.array([1.0, 10.0, 100.0])) / 1e6, 3))    # [MPa]
+    [10.    15.849 25.119]
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> r = pf.solve_contact(s, [1e6], e_star=1e9, hardness=h, rtol=1e-4)
+    >>> print(f"elastic {r.elastic_area[0]:.4f}, plastic {r.plastic_area[0]:.4f}")
+    elastic 0.0000, plastic 0.0838
     """
     arr = as_float_array(exponent, "exponent", "-", ndim=(0,))
     check_finite(arr, "exponent", "-")
@@ -251,9 +284,38 @@ def hardness_nix_gao(h0: float, length: float, q0: float) -> NixGaoHardness:
 
     Parameters
     ----------
-    h0 : float -- the hardness at large scales, > 0. [Pa]
-    length : float -- the material length l (Nix & Gao's h*), >= 0. [m]
-    q0 : float -- the wavenumber of zeta = 1 (the surface's q0), > 0. [1/m]
+    h0 : float
+        The hardness at large scales, > 0. [Pa]
+    length : float
+        The material length l (Nix & Gao's h*), >= 0. [m]
+    q0 : float
+        The wavenumber of zeta = 1 (the surface's q0), > 0. [1/m]
+
+    Returns
+    -------
+    callable
+        The law sigma_Y(zeta) = h0 sqrt(1 + length q0 zeta), vectorised over zeta [-] ->
+        [Pa] (a frozen record with the fields ``h0``, ``length`` and ``q0``), to pass as
+        ``hardness`` (as :func:`persson_fast.hardness_power_law`).
+
+    Raises
+    ------
+    ValueError
+        If ``h0`` or ``q0`` is not finite and > 0, or ``length`` not finite and >= 0.
+
+    See Also
+    --------
+    persson_fast.hardness_power_law : A power law in the magnification.
+    persson_fast.hardness_table : A hardness given on magnifications.
+    persson_fast.solve_contact : Takes it as ``hardness``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> h = pf.hardness_nix_gao(1e8, 1e-6, q0=1e4)
+    >>> print(h(np.array([1.0, 100.0])))
+    [1.00498756e+08 1.41421356e+08]
     """
     return NixGaoHardness(_positive(h0, "h0", "Pa"), _positive(length, "length", "m",
                                                                allow_zero=True),
@@ -265,8 +327,38 @@ def hardness_table(zeta: ArrayLike, sigma_y: ArrayLike) -> HardnessTable:
 
     Parameters
     ----------
-    zeta : array_like -- (n,) strictly increasing magnifications >= 1, n >= 2. [-]
-    sigma_y : array_like -- (n,) hardness values > 0 at them. [Pa]
+    zeta : array_like, shape (n,)
+        Strictly increasing magnifications >= 1, n >= 2. [-]
+    sigma_y : array_like, shape (n,)
+        Hardness values > 0 at them. [Pa]
+
+    Returns
+    -------
+    callable
+        The table as a vectorised law zeta [-] -> sigma_Y [Pa], interpolated linearly in
+        ln sigma_Y against ln zeta; evaluating it outside [zeta[0], zeta[-1]] raises a
+        ValueError (no extrapolation). Its inner points are the yield wall's kinks. Pass it
+        as ``hardness`` (as :func:`persson_fast.hardness_power_law`).
+
+    Raises
+    ------
+    ValueError
+        If the arrays are not finite, of different lengths or shorter than 2, ``zeta`` is
+        below 1 or not strictly increasing, or a ``sigma_y`` is not > 0.
+
+    See Also
+    --------
+    persson_fast.hardness_power_law : A power law in the magnification.
+    persson_fast.hardness_nix_gao : The indentation size effect.
+    persson_fast.solve_contact : Takes it as ``hardness``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> h = pf.hardness_table([1.0, 1e3, 1e5], [1e8, 2e8, 4e8])
+    >>> print(h(np.array([1.0, np.sqrt(1e3), 1e5])))
+    [1.00000000e+08 1.41421356e+08 4.00000000e+08]
     """
     z = as_float_array(zeta, "zeta", "-", ndim=(1,))
     v = as_float_array(sigma_y, "sigma_y", "Pa", ndim=(1,))

@@ -103,6 +103,29 @@ class ScanWarning(UserWarning):
 
     ``warnings.simplefilter("error", ScanWarning)`` turns it into an error (raised after every
     scene has run); ``ds.success``, ``ds.message`` and ``ds.status`` say which scene and point.
+
+    Attributes
+    ----------
+    args : tuple
+        ``(message,)``: the text :func:`scan` wrote, as for every warning.
+
+    See Also
+    --------
+    persson_fast.scan : Issues it.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> import persson_fast as pf
+    >>> issubclass(pf.ScanWarning, UserWarning)
+    True
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("error", pf.ScanWarning)
+    ...     try:
+    ...         warnings.warn("1 of 4 scenes failed", pf.ScanWarning)
+    ...     except pf.ScanWarning as w:
+    ...         print("raised:", w)
+    raised: 1 of 4 scenes failed
     """
 
 
@@ -281,6 +304,13 @@ def scan(surface: type | Callable[..., Surface] | Surface | Scene, params: dict,
         and of flagged (scene, pressure) points, and the parameters and messages of the
         worst few scenes (a raised solve first, then a failed pull-off, then the most
         flagged points).
+
+    See Also
+    --------
+    persson_fast.solve_contact : One scene.
+    persson_fast.pull_off : The pull-off stress of one scene.
+    persson_fast.Scene : A scene to pass in place of the keywords.
+    persson_fast.ScanWarning : What a scan with failed scenes issues.
 
     Notes
     -----

@@ -95,6 +95,22 @@ class ContactLaw:
         The surface and parameters it was built for.
     info : dict
         How the table was built (nodes, refinements).
+
+    See Also
+    --------
+    persson_fast.embed.contact_law : Builds a ContactLaw.
+    persson_fast.embed.law_pressure : p(u) from numba code.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> u = pf.solve_separation(s, [1e6], e_star=1e9).separation[0]
+    >>> print(f"{law.pressure_at(u):.5g} Pa")
+    1e+06 Pa
     """
 
     table: tuple
@@ -321,12 +337,35 @@ def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
     -------
     ContactLaw
 
+    Raises
+    ------
+    ValueError
+        For bad input (``e_star`` not > 0, ``rtol`` outside [1e-12, 0.1], a
+        ``pressure_max`` below ten times the smallest pressure the scene resolves, a Scene
+        with adhesion or a yield wall), naming the argument.
+
+    See Also
+    --------
+    persson_fast.embed.ContactLaw : What it returns.
+    persson_fast.embed.law_pressure : p(u) from numba code.
+    persson_fast.solve_separation : u(p) and K(p) from Python.
+
     Notes
     -----
     See the module docstring for the interpolation, its error control and the tails. The
     closed form behind it is :func:`persson_fast.solve_separation` (relative accuracy
     ~1e-12); building a law took 14 ms at rtol 1e-6 and 37 ms at rtol 1e-8 on the
     self-affine scene of ``benchmarks/bench_separation.py`` (2-core Intel Xeon machine).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> from persson_fast import embed
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> law = embed.contact_law(s, e_star=1e9, rtol=1e-6)
+    >>> print(law.table[0].size > 10, law.rtol)
+    True 1e-06
     """
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "contact_law")
     rtol = _check_rtol(rtol)

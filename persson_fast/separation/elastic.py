@@ -387,6 +387,20 @@ class SeparationResult:
         What the status codes mean.
     timings : dict
         Seconds spent. [s]
+
+    See Also
+    --------
+    persson_fast.solve_separation : Returns a SeparationResult.
+    persson_fast.GapDistribution : The distribution of the gaps.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> r = pf.solve_separation(s, [1e5, 1e6], e_star=1e9)
+    >>> print(bool(np.all(r.success)), np.round(r.separation * 1e6, 4))
+    True [3.7111 1.4316]
     """
 
     pressure: np.ndarray
@@ -450,6 +464,25 @@ def decay_length(surface: Surface | Scene, *, e_star: float | None = None,
         :math:`u_0 = \\sqrt{\\pi}\\, \\gamma_S \\int_{q_0}^{q_1} q^2 C(q) w(q) dq`
         (gamma_S = 1 for S = 1): -d ln p/du -> 1/u0 as p -> 0. It does not depend on E*
         (w/E* ... cancel: w = E*/(2 sqrt G) and G ~ E*^2). [m]
+
+    Raises
+    ------
+    ValueError
+        For bad input (``e_star`` not > 0, ``energy_correction`` outside [0, 1], a
+        Scene with adhesion or a yield wall), naming the argument.
+
+    See Also
+    --------
+    persson_fast.solve_separation : Mean separation and stiffness.
+    persson_fast.pressure_at_separation : p(u).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> print(f"{pf.decay_length(s, e_star=1e9) * 1e6:.4f} um")
+    1.0638 um
     """
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "decay_length")
     return gamma_s * float(np.sum(nodes_for(surface, e).a_sep))
@@ -480,6 +513,21 @@ def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
     -------
     SeparationResult
 
+    Raises
+    ------
+    ValueError
+        For bad input (a pressure not finite and >= 0, ``e_star`` not > 0,
+        ``energy_correction`` outside [0, 1], a Scene with adhesion or a yield wall), naming
+        the argument.
+
+    See Also
+    --------
+    persson_fast.SeparationResult : What it returns.
+    persson_fast.pressure_at_separation : The inverse, p(u).
+    persson_fast.decay_length : The decay length of p(u) at large u.
+    persson_fast.gap_distribution : The distribution of the gaps.
+    persson_fast.embed.contact_law : p(u) and K(u) tabulated for numba code.
+
     Notes
     -----
     Closed form of the module docstring (Persson, PRL 99, 125502 (2007); Yang & Persson,
@@ -492,6 +540,17 @@ def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
     precision (below ~1e-292 m its sum loses terms, below ~5e-324 m it is 0): such a u is
     flagged ``SEPARATION_UNDERFLOW``, and a u of 0 cannot be inverted (the inverse raises a
     ValueError saying so).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> r = pf.solve_separation(s, [1e5, 1e6], e_star=1e9)
+    >>> print(np.round(r.separation * 1e6, 4))
+    [3.7111 1.4316]
+    >>> print(np.round(r.stiffness / 1e12, 4))
+    [0.0958 1.1318]
     """
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "solve_separation")
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1)).reshape(-1)
@@ -568,6 +627,18 @@ def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
     float or numpy.ndarray
         p(u), same shape as ``separation``; monotone decreasing in u. [Pa]
 
+    Raises
+    ------
+    ValueError
+        For bad input (a separation not finite and > 0, ``e_star`` not > 0,
+        ``rtol`` outside [1e-12, 0.1], a Scene with adhesion or a yield wall), naming the
+        argument.
+
+    See Also
+    --------
+    persson_fast.solve_separation : u(p), the inverse.
+    persson_fast.embed.contact_law : p(u) tabulated for numba code.
+
     Notes
     -----
     Newton's method on ln u(e^x) = ln u_target in x = ln p, with the exact slope
@@ -577,6 +648,16 @@ def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
     continued by the exact small-pressure law p = p_f exp(-(u - u(p_f))/u0) (its error there
     is below the quadrature's). The bracket reaches the pressure where u underflows (about
     40 sqrt(G1)), so every positive double has its pressure.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> u = pf.solve_separation(s, [1e6], e_star=1e9).separation
+    >>> p = pf.pressure_at_separation(s, u, e_star=1e9)
+    >>> print(f"{p[0]:.6g} Pa")
+    1e+06 Pa
     """
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "pressure_at_separation")
     rtol = _check_rtol(rtol)

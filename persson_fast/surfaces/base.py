@@ -254,6 +254,22 @@ class Surface(abc.ABC):
         Long-wavelength cut-off, 2π/L with L the diameter of the nominal contact. [1/m]
     q1 : float
         Short-wavelength cut-off. [1/m]
+
+    See Also
+    --------
+    persson_fast.SelfAffine : A self-affine surface.
+    persson_fast.CapillaryWaves : Frozen capillary waves.
+    persson_fast.TabulatedPSD : A tabulated spectrum.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.seed_scene()
+    >>> isinstance(s, pf.Surface)
+    True
+    >>> print(f"{s.q0:.4g} {s.q1:.4g} {s.h_rms:.3g}")
+    6.283e+04 7e+09 4.55e-10
     """
 
     q0: float

@@ -103,6 +103,17 @@ class CapillaryWaves(Surface):
     bending_stiffness : float
         κ = γ/q_c². [J]
 
+    Raises
+    ------
+    ValueError
+        If a parameter is not finite or out of range (temperature, surface tension,
+        q_c and 0 < q0 < q1 positive; density and gravity >= 0).
+
+    See Also
+    --------
+    persson_fast.seed_scene : The seed paper's PMMA surface, a CapillaryWaves.
+    persson_fast.SelfAffine : A self-affine fractal surface.
+
     Notes
     -----
     The spectrum is (B.N.J. Persson, "Influence of frozen capillary waves on contact mechanics",
@@ -145,6 +156,15 @@ class CapillaryWaves(Surface):
     when s < 3p, which needs q_c² < 16ρg/3γ, far outside physical ranges) use 20-point
     Gauss-Legendre panels of unit width in ln q: the poles of C lie at least π/4 off the real
     ln q axis, which gives a relative error below 1e-13.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.CapillaryWaves(temperature=370.0, surface_tension=0.04, q_c=1.7e9,
+    ...                       q0=2 * np.pi / 1e-4, q1=7e9)
+    >>> print(f"h_rms {s.h_rms:.3g} m, slope rms {s.slope_rms:.3g}")
+    h_rms 4.55e-10 m, slope rms 0.291
     """
 
     MODEL = "capillary"
@@ -303,6 +323,19 @@ class SelfAffine(Surface):
     C0 : float
         Plateau value C(q0 <= q < q_r). [m^4]
 
+    Raises
+    ------
+    ValueError
+        If the parameters are not finite, out of range (``hurst`` in [0, 1], 0 < q0 <
+        q1) or do not fix the spectrum's level exactly once (one of ``h_rms``,
+        ``slope_rms``, ``C0``).
+
+    See Also
+    --------
+    persson_fast.CapillaryWaves : Frozen capillary waves (the seed paper's surface).
+    persson_fast.TabulatedPSD : A measured or tabulated spectrum.
+    persson_fast.solve_contact : The contact area of a surface.
+
     Notes
     -----
     Exactly one of ``h_rms``, ``slope_rms`` and ``C0`` must be given; the others follow. It
@@ -323,6 +356,16 @@ class SelfAffine(Surface):
     with (e^x - 1)/x from ``expm1``: the logarithmic cases σ = k - 1 - 2H = 0 (k=1, H=0; k=2,
     H=½; k=3, H=1) come out exactly and σ near 0 keeps full precision. The normalisations are
     C0 = h_rms²/(2π m1) and C0 = slope_rms²/(2π m3), m_k being the k-th moment at C0 = 1.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.SelfAffine(hurst=0.8, q0=1e4, q1=1e9, h_rms=1e-6)
+    >>> print(f"{s.C0:.4g} m^4, slope rms {s.slope_rms:.4g}")
+    2.546e-21 m^4, slope rms 0.199
+    >>> print(f"{s.h_rms:.3g} m")
+    1e-06 m
     """
 
     MODEL = "self-affine"
@@ -430,6 +473,26 @@ def seed_e_star(poisson: float = SEED_POISSON) -> float:
     -------
     float
         E* = 2.9e9 / (1 - nu^2). [Pa]
+
+    Raises
+    ------
+    ValueError
+        If ``poisson`` is not in [0, 0.5].
+
+    See Also
+    --------
+    persson_fast.seed_scene : The seed paper's surface.
+    persson_fast.SEED_YOUNG_MODULUS : E of the seed paper's PMMA.
+    persson_fast.SEED_POISSON : Its Poisson ratio.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> print(f"{pf.seed_e_star():.4g} Pa")
+    3.187e+09 Pa
+    >>> print(f"{pf.seed_e_star(0.5):.4g} Pa")
+    3.867e+09 Pa
     """
     check_not_bool(poisson, "poisson", "-")
     nu = float(poisson)
@@ -447,9 +510,23 @@ def seed_scene() -> CapillaryWaves:
         T = 370 K, γ = 0.04 J/m², q_c = 1.7e9 1/m, q0 = 2π/(0.1 mm), q1 = 7e9 1/m, no gravity;
         its h_rms is 0.455 nm (the paper quotes ≈ 0.5 nm, Eq. 2).
 
+    See Also
+    --------
+    persson_fast.seed_e_star : The seed paper's effective modulus.
+    persson_fast.CapillaryWaves : The surface model.
+    persson_fast.pull_off : Its pull-off stress.
+
     Notes
     -----
     Persson, arXiv:cond-mat/0512604.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import persson_fast as pf
+    >>> s = pf.seed_scene()
+    >>> print(type(s).__name__, f"{s.q0:.4g} {s.q1:.4g}")
+    CapillaryWaves 6.283e+04 7e+09
     """
     return CapillaryWaves(
         temperature=370.0, surface_tension=0.04, q_c=1.7e9, q0=2.0 * np.pi / 1e-4, q1=7e9
