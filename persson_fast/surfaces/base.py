@@ -41,7 +41,7 @@ BOLTZMANN = 1.380649e-23
 #: gels (~1e3-1e4 Pa) warn too; ``warnings.filterwarnings("ignore", "e_star")`` silences it. [Pa]
 E_STAR_WARN_BELOW = 1e5
 
-_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__)) + os.sep
+_PACKAGE_DIR = os.path.dirname(os.path.dirname(os.path.abspath(__file__))) + os.sep   # persson_fast/
 
 
 def _user_stacklevel() -> int:
