@@ -2,15 +2,14 @@
 
 A pickle names the module a class was defined in. Since the modules moved into subpackages,
 the old names are resolved here: a module that is gone (``persson_fast.tabulated``) is an
-alias of the module it became, found on first import, and a module whose name is now a
-package (``persson_fast.surfaces``) answers the names it held from the module that holds them
-now. Nothing here is a public path: new code imports from ``persson_fast`` itself.
+entry of ``sys.modules`` for the module it became (the same module object, its own
+``__spec__`` untouched, so its relative imports stay its own), and a module whose name is now
+a package (``persson_fast.surfaces``) answers the names it held from the module that holds
+them now. Nothing here is a public path: new code imports from ``persson_fast`` itself.
 """
 from __future__ import annotations
 
 import importlib
-import importlib.abc
-import importlib.util
 import sys
 
 #: modules that are gone -> the module they became
@@ -36,26 +35,6 @@ BECAME_PACKAGES = {
 }
 
 
-class _AliasLoader(importlib.abc.Loader):
-    def __init__(self, target):
-        self.target = target
-
-    def create_module(self, spec):
-        return importlib.import_module(self.target)
-
-    def exec_module(self, module):
-        pass
-
-
-class _MovedFinder(importlib.abc.MetaPathFinder):
-    """Finds a gone module under its old name: the module it became."""
-
-    def find_spec(self, fullname, path=None, target=None):
-        if fullname not in MOVED_MODULES:
-            return None
-        return importlib.util.spec_from_loader(fullname, _AliasLoader(MOVED_MODULES[fullname]))
-
-
 def _answer_from(holder: str):
     def __getattr__(name):
         if name.startswith("__"):
@@ -69,9 +48,10 @@ def _answer_from(holder: str):
 
 
 def install() -> None:
-    """Register the finder and the packages' fallbacks (once; at ``import persson_fast``)."""
-    if not any(isinstance(f, _MovedFinder) for f in sys.meta_path):
-        sys.meta_path.append(_MovedFinder())
+    """Register the old names and the packages' fallbacks (at ``import persson_fast``; the
+    modules named are imported by the package's own names already)."""
+    for old, new in MOVED_MODULES.items():
+        sys.modules.setdefault(old, importlib.import_module(new))
     for package, holder in BECAME_PACKAGES.items():
         module = importlib.import_module(package)
         if "__getattr__" not in vars(module):
