@@ -202,9 +202,9 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
     pressure : float or array_like, shape (n_p,)
         Nominal stress sigma0 (compressive > 0). Negative values need a wall with
         sigma_a > 0; at or below -sigma_a(0) the surfaces are separated (A = 0). The
-        compiled one-wall methods take |pressure| and |sigma_a| up to 1e150 Pa and a start
+        compiled one-wall methods take ``|pressure|`` and ``|sigma_a|`` up to 1e150 Pa and a start
         distance pressure + sigma_a(0) > 0 of at least 1e-150 times the largest of
-        sqrt(G[-1]), |pressure|, |sigma_a| (their scaled diffusion times must be doubles;
+        ``sqrt(G[-1])``, ``|pressure|``, ``|sigma_a|`` (their scaled diffusion times must be doubles;
         a ValueError otherwise). [Pa]
     sigma_a : float, array_like of shape (n_t,) or (n_p, n_t), or callable
         Detachment stress: the wall sits at -sigma_a(G). Samples: linear in G between the
@@ -241,7 +241,7 @@ def solve_diffusion(G: ArrayLike, pressure: ArrayLike,
         raises a ValueError.
     rtol : float
         Target relative accuracy of the area, in [1e-12, 0.1], with an absolute floor:
-        |A - A_exact| <= rtol A + 1e-12, or the status flags the result. An area far below
+        ``|A - A_exact| <= rtol A + 1e-12``, or the status flags the result. An area far below
         1e-12 (sigma0 + sigma_a(0) << sqrt(G): A ~ sigma0 / sqrt(pi G) without a wall) is
         accurate to 1e-12 only, and may be 0.0 with status 0. [-]
     level : int or None

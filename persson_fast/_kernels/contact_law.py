@@ -143,7 +143,7 @@ def law_status(law: tuple) -> int:
     strictly decreasing, both within [LOG_LOW, LOG_HIGH] (logarithms of doubles); the slopes
     dy < 0; z = ln K and dz = d ln K/d ln u finite; z tied to the others by the identity the
     builder writes, ln(-dy) = v + z - y (d ln p/d ln u = -u K/p), to a relative slack of
-    ``IDENTITY_SLACK`` of 1 + |v| + |y| + |z|, at ``IDENTITY_NODES`` (5) nodes evenly
+    ``IDENTITY_SLACK`` of ``1 + |v| + |y| + |z|``, at ``IDENTITY_NODES`` (5) nodes evenly
     spread over the table, both ends included; every interval monotone by the
     Fritsch-Carlson condition the builder enforces, (dy_i^2 + dy_(i+1)^2) <= 9 secant_i^2
     (with a relative slack of ``MONOTONE_SLACK`` for rounding). Written without early exits
