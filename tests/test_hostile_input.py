@@ -484,6 +484,10 @@ _ROOT = __import__("pathlib").Path(__file__).resolve().parents[1]
 #: raises SIGINT when the module IMPORT_AT is imported (during the package's import)
 _CHILD = """
 import signal, sys
+# a console script started from a terminal has Python's Ctrl-C handler; a process started in
+# the background inherits SIGINT ignored (Python then installs none), where a Ctrl-C cannot
+# arrive at all: the child takes the terminal's case whatever started the test run
+signal.signal(signal.SIGINT, signal.default_int_handler)
 class _Interrupt:
     def find_spec(self, name, path=None, target=None):
         if name == {at!r}:
