@@ -55,9 +55,15 @@ prange = numba.prange
 
 #: numba marks first-class functions experimental and says so when it compiles one; the
 #: package's own kernels use them on purpose (tested: bitwise equal to the linked code), so
-#: the note is silenced for warnings located in the package's files only
+#: the note is silenced for warnings located in the package's files only. numba 0.61 says it a
+#: second time while lowering, located in its own numba/core/utils.py rather than in the
+#: compiled function's file; that repeat is silenced too (the first note, raised while typing,
+#: still reaches a user who compiles a first-class function of their own: it is located in
+#: their file)
 warnings.filterwarnings("ignore", category=numba.core.errors.NumbaExperimentalFeatureWarning,
                         module=r".*persson_fast[/\\.]")
+warnings.filterwarnings("ignore", category=numba.core.errors.NumbaExperimentalFeatureWarning,
+                        module=r"numba\.core\.utils$")
 
 _PACKAGE = Path(__file__).resolve().parent
 #: every file that holds compiled code: a cached kernel is stale when any of them changes
@@ -104,15 +110,20 @@ class _PackageStamp:
         return (super().get_source_stamp(), kernel_source_stamp())
 
 
-class _UserDirLocator(_PackageStamp, caching.UserProvidedCacheLocator):
+def _locator(name):
+    # public from numba 0.59 on; numba 0.58 has them under private names
+    return getattr(caching, name, None) or getattr(caching, "_" + name)
+
+
+class _UserDirLocator(_PackageStamp, _locator("UserProvidedCacheLocator")):
     pass
 
 
-class _InTreeLocator(_PackageStamp, caching.InTreeCacheLocator):
+class _InTreeLocator(_PackageStamp, _locator("InTreeCacheLocator")):
     pass
 
 
-class _UserWideLocator(_PackageStamp, caching.UserWideCacheLocator):
+class _UserWideLocator(_PackageStamp, _locator("UserWideCacheLocator")):
     pass
 
 

@@ -14,7 +14,7 @@ import numpy as np
 
 from .theories import check_theory, check_theory_scene
 from ._validation import (as_float_array, check_finite, check_nonnegative, check_not_bool,
-                          check_positive)
+                          check_positive, check_whole_number)
 from .surfaces.models import E_STAR_WARN_BELOW, Surface, check_e_star
 
 __all__ = ["Scene", "DETACHMENT_PREFACTOR", "default_zeta", "ZETA_PER_DECADE"]
@@ -50,6 +50,11 @@ def default_zeta(surface: Surface, per_decade: int = ZETA_PER_DECADE) -> np.ndar
     numpy.ndarray
         Increasing magnifications from 1 to zeta1 = q1/q0 exactly. [-]
 
+    Raises
+    ------
+    ValueError
+        If ``per_decade`` is not a whole number >= 1.
+
     See Also
     --------
     persson_fast.adhesion_zeta : The grid of an adhesive solve.
@@ -65,6 +70,7 @@ def default_zeta(surface: Surface, per_decade: int = ZETA_PER_DECADE) -> np.ndar
     41 1.0 1e+05
     """
     check_not_bool(per_decade, "per_decade", "-")
+    per_decade = check_whole_number(per_decade, "per_decade")
     zeta1 = surface.q1 / surface.q0
     n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
     z = np.geomspace(1.0, zeta1, n)

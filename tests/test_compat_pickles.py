@@ -1,5 +1,6 @@
 """Pickles written by 0.1.x (before the modules moved into subpackages) still load, and the
 objects they hold work: the surfaces give their spectra, the results their fields."""
+import importlib.util
 import pathlib
 import pickle
 
@@ -10,6 +11,19 @@ import persson_fast as pf
 
 DATA = pathlib.Path(__file__).parent / "data" / "pickles_0.1.0"
 NAMES = sorted(p.stem for p in DATA.glob("*.pkl"))
+#: the stored pickles were written under NumPy 2, whose arrays pickle as numpy._core objects:
+#: NumPy 1.x reads them only from 1.26 on (it has numpy._core for that); with NumPy 1.24/1.25
+#: (supported, tested in CI's lowest-versions run) such a pickle cannot load, whatever the
+#: package does -- NumPy's rule, said in docs/developer.md
+NUMPY2_PICKLES_LOAD = importlib.util.find_spec("numpy._core") is not None
+NEEDS_NUMPY_CORE = "NumPy < 1.26 cannot read arrays pickled under NumPy 2 (no numpy._core)"
+
+
+def _read(name):
+    data = (DATA / f"{name}.pkl").read_bytes()
+    if b"numpy._core" in data and not NUMPY2_PICKLES_LOAD:
+        pytest.skip(NEEDS_NUMPY_CORE)
+    return data
 
 
 def test_the_stored_pickles_are_there():
@@ -19,12 +33,12 @@ def test_the_stored_pickles_are_there():
 
 @pytest.mark.parametrize("name", NAMES)
 def test_old_pickle_loads(name):
-    obj = pickle.loads((DATA / f"{name}.pkl").read_bytes())
+    obj = pickle.loads(_read(name))
     assert type(obj).__module__.startswith("persson_fast.")
 
 
 def test_old_surfaces_and_results_work():
-    load = lambda n: pickle.loads((DATA / f"{n}.pkl").read_bytes())  # noqa: E731
+    load = lambda n: pickle.loads(_read(n))  # noqa: E731
     seed = load("surface_seed")
     assert isinstance(seed, pf.CapillaryWaves)
     assert seed.h_rms() == pf.seed_scene().h_rms()

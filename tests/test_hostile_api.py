@@ -388,3 +388,35 @@ def test_scan_gaps_rtol_with_gaps_is_taken():
     ds = pf.scan(pf.SelfAffine, SCAN_PARAMS, [1e5], e_star=E_STAR, gaps=True, gaps_rtol=1e-2,
                  workers=1)
     assert ds.attrs["gaps_rtol"] == 1e-2
+
+
+@pytest.mark.parametrize("call, rule", [
+    (lambda: pf.adhesion_zeta(AFFINE, rtol=2.0), r"^rtol must lie in \(0, 1\) \[-\]; got rtol = 2\.0"),
+    (lambda: pf.adhesion_zeta(AFFINE, rtol=0.0), r"^rtol must lie in \(0, 1\) \[-\]; got rtol = 0\.0"),
+    (lambda: pf.adhesion_zeta(AFFINE, rtol=np.nan), r"^rtol must be finite"),
+    (lambda: pf.adhesion_zeta(AFFINE, per_decade=0),
+     r"^per_decade must be a whole number >= 1 \[-\]; got per_decade = 0"),
+    (lambda: pf.adhesion_zeta(AFFINE, per_decade=2.5),
+     r"^per_decade must be a whole number >= 1 \[-\]; got per_decade = 2\.5"),
+    (lambda: pf.adhesion_zeta(AFFINE, near_one_min=1.5),
+     r"^near_one_min must lie in \(0, 1\) \[-\]; got near_one_min = 1\.5"),
+    (lambda: pf.default_zeta(AFFINE, per_decade=0),
+     r"^per_decade must be a whole number >= 1 \[-\]; got per_decade = 0"),
+    (lambda: pf.default_zeta(AFFINE, per_decade=-3),
+     r"^per_decade must be a whole number >= 1 \[-\]; got per_decade = -3"),
+], ids=["adhesion rtol 2", "adhesion rtol 0", "adhesion rtol nan", "adhesion per_decade 0",
+        "adhesion per_decade 2.5", "adhesion near_one_min 1.5", "default per_decade 0",
+        "default per_decade -3"])
+def test_zeta_grids_refuse_values_outside_their_rules(call, rule):
+    """adhesion_zeta(rtol=2.0) and default_zeta(per_decade=0) made a grid; now each names the
+    argument and its rule."""
+    with pytest.raises(ValueError, match=rule):
+        call()
+
+
+def test_zeta_grids_unchanged_for_valid_arguments():
+    """A float with a whole value is the same per_decade as the int (the grid is identical)."""
+    np.testing.assert_array_equal(pf.adhesion_zeta(AFFINE, per_decade=12.0),
+                                  pf.adhesion_zeta(AFFINE, per_decade=12))
+    np.testing.assert_array_equal(pf.default_zeta(AFFINE, per_decade=np.int64(5)),
+                                  pf.default_zeta(AFFINE, per_decade=5))

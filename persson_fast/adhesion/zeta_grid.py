@@ -14,7 +14,7 @@ if TYPE_CHECKING:  # names of the type hints only
 
 import numpy as np
 
-from .._validation import check_not_bool
+from .._validation import as_float_array, check_finite, check_not_bool, check_whole_number
 
 __all__ = ["adhesion_zeta", "refine_zeta", "coarsen_zeta", "Onset", "onset_at", "onset_grid",
            "onset_coordinate"]
@@ -69,6 +69,12 @@ def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None =
         spectrum's breakpoints and points spaced in ln(zeta - 1) from ``near_one_min`` to 1
         with ``NEAR_ONE_FRACTION`` of that density (the grid must be fine near 1). [-]
 
+    Raises
+    ------
+    ValueError
+        If ``rtol`` or ``near_one_min`` is not a number in (0, 1), or ``per_decade`` is not a
+        whole number >= 1.
+
     See Also
     --------
     persson_fast.default_zeta : The grid of a scene without adhesion.
@@ -91,12 +97,13 @@ def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None =
     >>> print(z.size, z[0], f"{z[-1]:.4g}")
     81 1.0 1.114e+05
     """
-    for value, name in ((rtol, "rtol"), (per_decade, "per_decade"),
-                        (near_one_min, "near_one_min")):
-        check_not_bool(value, name, "-")
+    rtol = _open_unit(rtol, "rtol")
     if per_decade is None:
         per_decade = max(4, int(np.ceil(ZETA_PER_DECADE_ADHESION * (1e-6 / rtol) ** (1 / 3))))
-    near_min = NEAR_ONE_MIN if near_one_min is None else float(near_one_min)
+    else:
+        check_not_bool(per_decade, "per_decade", "-")
+        per_decade = check_whole_number(per_decade, "per_decade")
+    near_min = NEAR_ONE_MIN if near_one_min is None else _open_unit(near_one_min, "near_one_min")
     zeta1 = surface.q1 / surface.q0
     n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)
     z = np.geomspace(1.0, zeta1, n)
@@ -113,6 +120,15 @@ def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None =
     z = z[(z >= 1.0) & (z <= zeta1)]
     z[0], z[-1] = 1.0, zeta1
     return z
+
+
+def _open_unit(value, name):
+    """``value`` as a float in the open interval (0, 1), or a ValueError naming it."""
+    arr = as_float_array(value, name, "-", ndim=(0,))
+    check_finite(arr, name, "-")
+    if not 0.0 < float(arr) < 1.0:
+        raise ValueError(f"{name} must lie in (0, 1) [-]; got {name} = {value!r}")
+    return float(arr)
 
 
 def _merged_breakpoints(bp, zeta1):
