@@ -42,6 +42,27 @@ import numpy as np
 from numba.core import caching, cgutils, types
 from numba.extending import intrinsic
 
+#: the oldest numba the kernels run on: a first-class function is called through its jit
+#: address (``FunctionModel.jit_addr``, :func:`function_at`), which numba has from 0.61 on;
+#: pyproject.toml declares the same floor and CI runs the tests once on it
+NUMBA_MIN = (0, 61)
+
+
+def _release(version: str) -> tuple[int, ...]:
+    parts = []
+    for piece in version.split(".")[:2]:
+        digits = "".join(ch for ch in piece if ch.isdigit())
+        parts.append(int(digits) if digits else 0)
+    return tuple(parts)
+
+
+if _release(numba.__version__) < NUMBA_MIN:
+    _floor = ".".join(map(str, NUMBA_MIN))
+    raise ImportError(f"persson_fast needs numba >= {_floor} (its kernels call compiled "
+                      f"functions through their jit address); found numba {numba.__version__}: "
+                      f"pip install --upgrade 'numba>={_floor}'")
+
+
 __all__ = ["njit_serial", "njit_inline", "njit_parallel", "njit_sweeps", "prange",
            "kernel_source_stamp", "CallingKernel", "function_at", "jit_address",
            "callable_with", "compile_for", "in_disk_cache", "compile_beside",
@@ -111,7 +132,7 @@ class _PackageStamp:
 
 
 def _locator(name):
-    # public from numba 0.59 on; numba 0.58 has them under private names
+    # numba 0.61 names its cache locators with a leading underscore; later versions without
     return getattr(caching, name, None) or getattr(caching, "_" + name)
 
 

@@ -7,6 +7,7 @@ surface of the chosen model. An invalid setting raises :class:`CommandError`.
 from __future__ import annotations
 
 import os
+import tomllib
 
 import numpy as np
 
@@ -16,14 +17,6 @@ from .parser import (THEORY_NAMES, CommandError, _dest, _or, _selector_flags,
 
 
 def _load_toml(path) -> dict:
-    try:
-        import tomllib
-    except ModuleNotFoundError:  # Python 3.10
-        try:
-            import tomli as tomllib
-        except ModuleNotFoundError:
-            raise CommandError(
-                "--config needs Python 3.11+ (tomllib) or the 'tomli' package") from None
     try:
         with open(path, "rb") as fh:
             return tomllib.load(fh)
