@@ -304,8 +304,9 @@ class Scene:
 SCENE_DEFAULTS = {"e_star": None, "work_of_adhesion": 0.0, "energy_correction": None,
                   "detachment_prefactor": DETACHMENT_PREFACTOR, "hardness": None}
 
-#: the entry points that take a Scene with a yield wall (hardness)
-TAKES_HARDNESS = ("solve_contact", "scan")
+#: the entry points that take a Scene with a yield wall (hardness); pull_off moves the Scene's
+#: hardness to its own keyword before it unpacks the rest, so it never reaches the check below
+TAKES_HARDNESS = ("solve_contact", "pull_off", "scan")
 
 
 def unpack_scene(surface, given: dict, where: str):

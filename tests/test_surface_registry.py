@@ -77,11 +77,11 @@ BUILTIN_HELP = {
         ("--bins-per-decade", "NBINS", "log bins per decade of the measured spectrum "
                                        "(default 10)"),
         ("--height-unit", "HUNIT", "length unit of a topography file that names none (m, mm, "
-                                   "um, nm)"),
+                                   "um, nm, A, pm, km)"),
         ("--physical-size", "SIZE", "scan size of a topography file that gives none, in "
                                     "--height-unit"),
-        ("--q-unit", "QUNIT", "unit of q in --psd (1/m, 1/mm, 1/um, 1/nm)"),
-        ("--c-unit", "CUNIT", "unit of C in --psd (m^4, um^4, nm^4)")],
+        ("--q-unit", "QUNIT", "unit of q in --psd (1/m, 1/mm, 1/um, 1/nm, 1/A)"),
+        ("--c-unit", "CUNIT", "unit of C in --psd (m^4, mm^4, um^4, nm^4, A^4)")],
     "all models": [
         ("--q0", "Q0", "smallest wavevector [1/m]"),
         ("--q1", "Q1", "largest wavevector [1/m]")],
@@ -305,3 +305,15 @@ def test_register_refuses_what_the_command_line_could_not_take(new_model):
         register_surface_model(SurfaceModel("x-test", {"a": ("m", "a")}, build, "t"))
     assert "x-test" not in SURFACE_MODELS
     assert band_parameters(required=False)["q0"].required is False
+
+
+def test_unit_help_lists_every_accepted_ascii_unit():
+    """The help of --q-unit, --c-unit and --height-unit lists the units the readers take (it
+    listed fewer: 1/A, mm^4, A^4, A, pm and km were accepted but not named)."""
+    from persson_fast.surfaces.topography import _LENGTH_UNITS, C_UNITS, Q_UNITS
+
+    helps = {a.option_strings[0]: a.help for a in _contact_parser()._actions if a.option_strings}
+    for flag, table in (("--q-unit", Q_UNITS), ("--c-unit", C_UNITS),
+                        ("--height-unit", _LENGTH_UNITS)):
+        listed = helps[flag].rsplit("(", 1)[1].rstrip(")").split(", ")
+        assert listed == [u for u in table if u.isascii()], flag

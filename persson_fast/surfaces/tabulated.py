@@ -24,6 +24,7 @@ import numpy as np
 from .._validation import as_float_array, check_nonnegative, check_positive
 from .base import Surface, _check_band, _check_hurst, _positive_scalar, _power_law_integral
 from .registry import Parameter, SurfaceModel, band_parameters, register_surface_model
+from .topography import _LENGTH_UNITS, C_UNITS, Q_UNITS
 
 __all__ = ["TabulatedPSD"]
 
@@ -426,6 +427,12 @@ def _surface_from_spectrum_file(file, q_unit=None, C_unit=None, q0=None, q1=None
     return TabulatedPSD.from_file(file, q_unit=q_unit, C_unit=C_unit, q0=q0, q1=q1)
 
 
+def _ascii_names(units) -> str:
+    """The unit names of a table as the help lists them: the ASCII spellings (``um`` stands for
+    ``µm`` too, ``A`` for ``Å``; both are accepted)."""
+    return ", ".join(name for name in units if name.isascii())
+
+
 register_surface_model(SurfaceModel(
     name="topography",
     parameters={
@@ -438,8 +445,9 @@ register_surface_model(SurfaceModel(
                                 "(default fitted)", metavar="H"),
         "bins_per_decade": Parameter(None, "log bins per decade of the measured spectrum",
                                      metavar="NBINS", type=int),
-        "unit": Parameter(None, "length unit of a topography file that names none (m, mm, um, "
-                                "nm)", metavar="HUNIT", flag="--height-unit", type=str),
+        "unit": Parameter(None, f"length unit of a topography file that names none "
+                                f"({_ascii_names(_LENGTH_UNITS)})", metavar="HUNIT",
+                          flag="--height-unit", type=str),
         "physical_sizes": Parameter(None, "scan size of a topography file that gives none, in "
                                           "--height-unit", metavar="SIZE",
                                     flag="--physical-size", nargs="+"),
@@ -451,10 +459,10 @@ register_surface_model(SurfaceModel(
     parameters={
         "file": Parameter(None, "two-column spectrum file q, C", required=True,
                           metavar="FILE.csv", flag="--psd", type=str, path=True, selects=True),
-        "q_unit": Parameter(None, "unit of q in --psd (1/m, 1/mm, 1/um, 1/nm)", metavar="QUNIT",
-                            type=str),
-        "C_unit": Parameter(None, "unit of C in --psd (m^4, um^4, nm^4)", metavar="CUNIT",
-                            type=str),
+        "q_unit": Parameter(None, f"unit of q in --psd ({_ascii_names(Q_UNITS)})",
+                            metavar="QUNIT", type=str),
+        "C_unit": Parameter(None, f"unit of C in --psd ({_ascii_names(C_UNITS)})",
+                            metavar="CUNIT", type=str),
         **band_parameters(required=False),
     },
     build=_surface_from_spectrum_file, title=_MEASURED_TITLE, description=_MEASURED_TEXT))
