@@ -420,3 +420,30 @@ def test_zeta_grids_unchanged_for_valid_arguments():
                                   pf.adhesion_zeta(AFFINE, per_decade=12))
     np.testing.assert_array_equal(pf.default_zeta(AFFINE, per_decade=np.int64(5)),
                                   pf.default_zeta(AFFINE, per_decade=5))
+
+
+SEPARATION_ENTRIES = [
+    ("solve_separation", lambda **kw: pf.solve_separation(AFFINE, [1e5, 1e6], e_star=E_STAR,
+                                                          **kw).separation),
+    ("pressure_at_separation", lambda **kw: pf.pressure_at_separation(
+        AFFINE, [1e-6, 2e-6], e_star=E_STAR, **kw)),
+    ("decay_length", lambda **kw: pf.decay_length(AFFINE, e_star=E_STAR, **kw)),
+    ("contact_law", lambda **kw: embed.contact_law(AFFINE, e_star=E_STAR, rtol=1e-4,
+                                                   **kw).table),
+]
+
+
+@pytest.mark.parametrize("where, call", SEPARATION_ENTRIES, ids=[e[0] for e in SEPARATION_ENTRIES])
+def test_separation_entries_take_work_of_adhesion_and_refuse_it_saying_why(where, call):
+    """As gap_distribution: the keyword exists (it was "unexpected keyword argument"), 0 is
+    the scene without adhesion (bitwise), > 0 is refused with the reason, < 0 by its rule."""
+    ref = call()
+    np.testing.assert_array_equal(call(work_of_adhesion=0.0), ref)
+    with pytest.raises(ValueError, match=rf"^{where}: the mean separation and the contact "
+                                         r"stiffness are derived here for scenes without "
+                                         r"adhesion only \(work_of_adhesion = 0\); got "
+                                         r"work_of_adhesion = 0\.03 \[J/m\^2\]"):
+        call(work_of_adhesion=0.03)
+    with pytest.raises(ValueError, match=r"^work_of_adhesion must be >= 0 \[J/m\^2\]"):
+        call(work_of_adhesion=-1.0)
+    _refuses_bool(lambda: call(work_of_adhesion=True), "work_of_adhesion")

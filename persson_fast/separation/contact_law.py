@@ -315,7 +315,7 @@ def _check_representable_top(nodes, gamma_s: float, p_hi: float, root_g1: float)
 
 def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
                 energy_correction: float | None = None, rtol: float = 1e-6,
-                pressure_max: float | None = None) -> ContactLaw:
+                pressure_max: float | None = None, work_of_adhesion: float = 0.0) -> ContactLaw:
     """Tabulate p(u) and K(u) of a scene without adhesion for compiled callers.
 
     Parameters
@@ -332,6 +332,9 @@ def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
         Upper end of the table; default 10 sqrt(G1) (u there is ~1e-11 of the roughness).
         At most the pressure where u(p) underflows double precision (about 50 sqrt(G1));
         beyond it a ValueError gives that pressure. [Pa]
+    work_of_adhesion : float
+        Delta gamma; must be 0 (the default): the contact law is derived without adhesion only, and a
+        value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------
@@ -367,7 +370,8 @@ def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
     >>> print(law.table[0].size > 10, law.rtol)
     True 1e-06
     """
-    surface, e, gamma_s = _scene(surface, e_star, energy_correction, "contact_law")
+    surface, e, gamma_s = _scene(surface, e_star, energy_correction, "contact_law",
+                                 work_of_adhesion=work_of_adhesion)
     rtol = _check_rtol(rtol)
     nodes = nodes_for(surface, e)
     root_g1 = 0.5 / nodes.s_scale[0]

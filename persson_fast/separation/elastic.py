@@ -75,7 +75,7 @@ from .._kernels.contact_law import law_sweep
 from .._kernels.separation import (J_END, J_SPLIT, build_kfun_table,
                                   chebyshev, separation_sweep, separation_sweep_prange)
 from .._kernels.status import BELOW_RESOLVED, OK, STATUS_MESSAGES
-from .._validation import as_float_array, check_finite
+from .._validation import as_float_array, check_finite, check_nonnegative
 from ..scene import _check_rtol, unpack_scene
 from ..surfaces.models import SelfAffine
 from ..sweep import run_rows
@@ -331,11 +331,19 @@ def _gamma(energy_correction) -> float:
     return 1.0 if energy_correction is None else float(energy_correction)
 
 
-def _scene(surface, e_star, energy_correction, where: str, refused: str | None = None):
-    """(surface, e_star, gamma_S) of a scene without adhesion; adhesion is refused with the
-    message ``refused`` (default ``ADHESION_REFUSED``; fields ``where`` and ``dg``)."""
+def _scene(surface, e_star, energy_correction, where: str, refused: str | None = None,
+           work_of_adhesion=0.0):
+    """(surface, e_star, gamma_S) of a scene without adhesion; adhesion (the Scene's, or a
+    ``work_of_adhesion`` keyword > 0, checked first: the adhesion is then the reason given,
+    not a Scene given together with the keyword) is refused with the message ``refused``
+    (default ``ADHESION_REFUSED``; fields ``where`` and ``dg``)."""
     from ..scene import plan_scene
 
+    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
+    check_finite(dg, "work_of_adhesion", "J/m^2")
+    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
+    if float(dg) > 0:
+        raise ValueError((refused or ADHESION_REFUSED).format(where=where, dg=float(dg)))
     surface, kw = unpack_scene(surface, {"e_star": e_star, "energy_correction": energy_correction},
                                where)
     plan = plan_scene(surface, kw)
@@ -446,7 +454,8 @@ def _evaluate(nodes: SeparationNodes, gamma_s: float, p: np.ndarray, parallel=No
 
 
 def decay_length(surface: Surface | Scene, *, e_star: float | None = None,
-                 energy_correction: float | None = None) -> float:
+                 energy_correction: float | None = None,
+                 work_of_adhesion: float = 0.0) -> float:
     """u0 of the small-pressure law p ~ exp(-u/u0) (no adhesion). [m]
 
     Parameters
@@ -457,6 +466,9 @@ def decay_length(surface: Surface | Scene, *, e_star: float | None = None,
         Effective modulus E* > 0 (with a surface). [Pa]
     energy_correction : float or None
         gamma_S of S = gamma_S + (1 - gamma_S) P^2; None: S = 1. [-]
+    work_of_adhesion : float
+        Delta gamma; must be 0 (the default): the decay length is derived without adhesion only, and a
+        value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------
@@ -484,13 +496,15 @@ def decay_length(surface: Surface | Scene, *, e_star: float | None = None,
     >>> print(f"{pf.decay_length(s, e_star=1e9) * 1e6:.4f} um")
     1.0638 um
     """
-    surface, e, gamma_s = _scene(surface, e_star, energy_correction, "decay_length")
+    surface, e, gamma_s = _scene(surface, e_star, energy_correction, "decay_length",
+                                 work_of_adhesion=work_of_adhesion)
     return gamma_s * float(np.sum(nodes_for(surface, e).a_sep))
 
 
 def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
                      e_star: float | None = None, energy_correction: float | None = None,
-                     parallel: bool | str | None = None) -> SeparationResult:
+                     parallel: bool | str | None = None,
+                     work_of_adhesion: float = 0.0) -> SeparationResult:
     """Mean interfacial separation, contact stiffness and elastic energy (no adhesion).
 
     Parameters
@@ -508,6 +522,9 @@ def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
         gamma_S of S = gamma_S + (1 - gamma_S) P^2 in [0, 1]; None: S = 1 (the seed's). [-]
     parallel : None, bool, "threads" or "prange"
         As in :func:`persson_fast.solve_contact`.
+    work_of_adhesion : float
+        Delta gamma; must be 0 (the default): the separation is derived without adhesion only, and a
+        value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------
@@ -552,7 +569,8 @@ def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
     >>> print(np.round(r.stiffness / 1e12, 4))
     [0.0958 1.1318]
     """
-    surface, e, gamma_s = _scene(surface, e_star, energy_correction, "solve_separation")
+    surface, e, gamma_s = _scene(surface, e_star, energy_correction, "solve_separation",
+                                 work_of_adhesion=work_of_adhesion)
     p = as_float_array(pressure, "pressure", "Pa", ndim=(0, 1)).reshape(-1)
     check_finite(p, "pressure", "Pa")
     if np.any(p < 0):
@@ -603,7 +621,8 @@ INVERSE_MAX_ITER = 60
 
 def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
                            e_star: float | None = None, energy_correction: float | None = None,
-                           rtol: float = 1e-10) -> float | np.ndarray:
+                           rtol: float = 1e-10,
+                           work_of_adhesion: float = 0.0) -> float | np.ndarray:
     """Nominal pressure at a given mean interfacial separation: the inverse of u(p).
 
     Parameters
@@ -621,6 +640,9 @@ def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
     rtol : float
         Relative accuracy of the pressure, in [1e-12, 0.1] (default 1e-10) [-]; it is the
         tolerance of the root; u(p) itself is exact to ~1e-12.
+    work_of_adhesion : float
+        Delta gamma; must be 0 (the default): u(p) is derived without adhesion only, and a
+        value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------
@@ -659,7 +681,8 @@ def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
     >>> print(f"{p[0]:.6g} Pa")
     1e+06 Pa
     """
-    surface, e, gamma_s = _scene(surface, e_star, energy_correction, "pressure_at_separation")
+    surface, e, gamma_s = _scene(surface, e_star, energy_correction,
+                                 "pressure_at_separation", work_of_adhesion=work_of_adhesion)
     rtol = _check_rtol(rtol)
     u_in = as_float_array(separation, "separation", "m")
     target = u_in.reshape(-1)

@@ -77,7 +77,7 @@ import numpy as np
 from .._kernels.gaps import (FOLDED, TRUNCATED, component_locations, component_means,
                             mixture_cdf, mixture_density)
 from .._kernels.status import OK, RTOL_NOT_MET, SEPARATION_UNDERFLOW, STATUS_MESSAGES
-from .._validation import as_float_array, check_finite, check_nonnegative
+from .._validation import as_float_array, check_finite
 from ..scene import _check_rtol
 from .elastic import (KFUN_STEPS_PER_UNIT, KFUN_X_LOW, _scene, kfun_table,
                          solve_separation)
@@ -538,12 +538,8 @@ def gap_distribution(surface: Surface | Scene, pressure: ArrayLike, *,
     True
     """
     t0 = time.perf_counter()
-    dg = as_float_array(work_of_adhesion, "work_of_adhesion", "J/m^2", ndim=(0,))
-    check_nonnegative(dg, "work_of_adhesion", "J/m^2")
-    if float(dg) > 0:
-        raise ValueError(GAPS_ADHESION_REFUSED.format(where="gap_distribution", dg=float(dg)))
     surface, e, gamma_s = _scene(surface, e_star, energy_correction, "gap_distribution",
-                                 GAPS_ADHESION_REFUSED)
+                                 GAPS_ADHESION_REFUSED, work_of_adhesion)
     if not isinstance(shape, str) or shape not in GAP_SHAPES:
         raise ValueError(f"shape must be one of {', '.join(repr(s) for s in GAP_SHAPES)} [-]; "
                          f"got shape = {shape!r}")
