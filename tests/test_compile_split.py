@@ -214,6 +214,8 @@ print(json.dumps({"started": started, "cpus": _jit._usable_cpus(),
 """
 
 
+# slow: fills an empty cache first (~60 s on 2 cores); the cold-cache split stays in CI
+@pytest.mark.slow
 @needs_jit
 def test_a_warm_cache_starts_no_second_process(tmp_path):
     """``pf.warmup()`` twice on one cache. The first compiles the adhesive fixed point in a

@@ -53,6 +53,9 @@ def test_seed_converges_with_rtol(seed_runs):
     assert errors[0] <= 1e-3 * SEED_PULL_OFF and errors[1] <= 1e-4 * SEED_PULL_OFF, errors
 
 
+# slow: pull-off of the seed at the default rtol 1e-6 (~45 s on 2 cores); the tolerance
+# ladder above and the near-threshold cases stay in CI
+@pytest.mark.slow
 def test_seed_default_tolerance():
     """At the default rtol = 1e-6 the estimate meets rtol and the value is within it."""
     with warnings.catch_warnings():

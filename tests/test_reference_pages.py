@@ -37,8 +37,6 @@ API_INDEX = ROOT / "docs" / "api" / "index.rst"
 #: functions that take arguments but raise nothing of their own, and why
 NO_RAISES = {
     "warmup": "takes one flag and compiles; nothing of the caller's to refuse",
-    "adhesion_zeta": "builds a grid from a checked surface; no argument check of its own yet",
-    "default_zeta": "builds a grid from a checked surface; no argument check of its own yet",
 }
 #: classes users read but do not construct (their fields are documented as Attributes)
 RESULT_CLASSES = {"ContactResult", "DiffusionResult", "SeparationResult", "GapDistribution",

@@ -369,6 +369,10 @@ def client():
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                        dashboard_address=":0")
     cl = distributed.Client(cluster)
+    # both workers registered before any test reads the set of workers (on a loaded machine
+    # the first test could start while they were still joining, and took an empty set for
+    # the workers it must find again)
+    cl.wait_for_workers(2, timeout=120)
     yield cl
     cl.close()
     cluster.close()

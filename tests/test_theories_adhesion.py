@@ -47,6 +47,9 @@ def seed_reference():
                for th in ("yp08", "wm17")}
 
 
+# slow: its reference solves the seed with adhesion at rtol 1e-8 for two theories (~150 s on 2 cores);
+# test_load_bookkeeping and the yield cases below keep the corrected adhesive theories in CI
+@pytest.mark.slow
 @pytest.mark.parametrize("theory", ["yp08", "wm17"])
 @pytest.mark.parametrize("rtol", [1e-4, 1e-6])
 def test_seed_scene_with_adhesion_converges(theory, rtol, seed_reference):

@@ -349,7 +349,10 @@ def test_contact_cn_bitwise_equal_to_serial(parallel, serial_results, modes_used
     assert modes_used == [expected_mode(parallel, 40)]
 
 
-@pytest.mark.parametrize("parallel", PARALLEL, ids=PARALLEL_IDS)
+# the prange case is slow: the parallel adhesive sweep is compiled on every run (prange
+# kernels are not cached, ~35 s on 2 cores); the other drivers stay in CI
+@pytest.mark.parametrize("parallel", [pytest.param(p, marks=pytest.mark.slow) if p == "prange"
+                                      else p for p in PARALLEL], ids=PARALLEL_IDS)
 def test_adhesion_bitwise_equal_to_serial(parallel, serial_results, modes_used):
     want = serial_results["adhesive"]
     assert want.success, want.message
@@ -467,6 +470,9 @@ def check_reports(reports, modes, want, kinds=("contact", "adhesive")):
         assert len(got) == len(kinds) * len(modes)
 
 
+# slow: every kernel compiled from an empty cache in two processes (~70 s on 2 cores);
+# tests/test_compile_split.py keeps a cold-cache run in CI
+@pytest.mark.slow
 @needs_jit
 def test_processes_share_a_cold_then_warm_cache(tmp_path):
     """3 processes at once on one empty cache (all compile, all write it), then 3 at once on
@@ -528,6 +534,9 @@ def test_workqueue_prange_from_4_python_threads():
     assert len(rep["runs"]) == 9 and all(r["equal"] for r in rep["runs"]), rep["runs"]
 
 
+# slow: the prange adhesive sweep compiled (not cached) and run from 4 threads (~40 s);
+# the prange and threads workqueue tests above stay in CI
+@pytest.mark.slow
 @needs_jit
 def test_workqueue_adhesion_from_4_python_threads():
     """The adhesive sweep under workqueue from 4 threads: default, True and "prange"."""
