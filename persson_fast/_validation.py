@@ -177,7 +177,9 @@ def check_level(level) -> None:
 
 
 def check_whole_number(value, name: str, minimum: int = 1) -> int:
-    """A whole number >= ``minimum`` (an int, or a float with an integral value)."""
+    """A whole number >= ``minimum`` (an int, or a float with an integral value); a bool is
+    refused as such (:func:`check_not_bool`)."""
+    check_not_bool(value, name, "-")
     if isinstance(value, bool) or not isinstance(value, (int, np.integer, float)) or \
             value != int(value) or int(value) < minimum:
         raise ValueError(f"{name} must be a whole number >= {minimum} [-]; got {name} = {value!r}")

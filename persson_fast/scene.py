@@ -13,8 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .theories import check_theory, check_theory_scene
-from ._validation import (as_float_array, check_finite, check_nonnegative, check_not_bool,
-                          check_positive, check_whole_number)
+from ._validation import (as_float_array, check_finite, check_nonnegative, check_positive,
+                          check_whole_number)
 from .surfaces.models import E_STAR_WARN_BELOW, Surface, check_e_star
 
 __all__ = ["Scene", "DETACHMENT_PREFACTOR", "default_zeta", "ZETA_PER_DECADE"]
@@ -69,7 +69,6 @@ def default_zeta(surface: Surface, per_decade: int = ZETA_PER_DECADE) -> np.ndar
     >>> print(z.size, z[0], f"{z[-1]:.4g}")
     41 1.0 1e+05
     """
-    check_not_bool(per_decade, "per_decade", "-")
     per_decade = check_whole_number(per_decade, "per_decade")
     zeta1 = surface.q1 / surface.q0
     n = max(2, int(np.ceil(np.log10(zeta1) * per_decade)) + 1)

@@ -14,7 +14,7 @@ if TYPE_CHECKING:  # names of the type hints only
 
 import numpy as np
 
-from .._validation import as_float_array, check_finite, check_not_bool, check_whole_number
+from .._validation import as_float_array, check_finite, check_whole_number
 
 __all__ = ["adhesion_zeta", "refine_zeta", "coarsen_zeta", "Onset", "onset_at", "onset_grid",
            "onset_coordinate"]
@@ -101,7 +101,6 @@ def adhesion_zeta(surface: Surface, rtol: float = 1e-6, per_decade: int | None =
     if per_decade is None:
         per_decade = max(4, int(np.ceil(ZETA_PER_DECADE_ADHESION * (1e-6 / rtol) ** (1 / 3))))
     else:
-        check_not_bool(per_decade, "per_decade", "-")
         per_decade = check_whole_number(per_decade, "per_decade")
     near_min = NEAR_ONE_MIN if near_one_min is None else _open_unit(near_one_min, "near_one_min")
     zeta1 = surface.q1 / surface.q0

@@ -333,8 +333,8 @@ def contact_law(surface: Surface | Scene, *, e_star: float | None = None,
         At most the pressure where u(p) underflows double precision (about 50 sqrt(G1));
         beyond it a ValueError gives that pressure. [Pa]
     work_of_adhesion : float
-        Delta gamma; must be 0 (the default): the contact law is derived without adhesion only, and a
-        value > 0 is a ValueError that says so. [J/m^2]
+        Delta gamma; must be 0 (the default): the contact law is derived without adhesion
+        only, and a value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------

@@ -467,8 +467,8 @@ def decay_length(surface: Surface | Scene, *, e_star: float | None = None,
     energy_correction : float or None
         gamma_S of S = gamma_S + (1 - gamma_S) P^2; None: S = 1. [-]
     work_of_adhesion : float
-        Delta gamma; must be 0 (the default): the decay length is derived without adhesion only, and a
-        value > 0 is a ValueError that says so. [J/m^2]
+        Delta gamma; must be 0 (the default): the decay length is derived without adhesion
+        only, and a value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------
@@ -523,8 +523,8 @@ def solve_separation(surface: Surface | Scene, pressure: ArrayLike, *,
     parallel : None, bool, "threads" or "prange"
         As in :func:`persson_fast.solve_contact`.
     work_of_adhesion : float
-        Delta gamma; must be 0 (the default): the separation is derived without adhesion only, and a
-        value > 0 is a ValueError that says so. [J/m^2]
+        Delta gamma; must be 0 (the default): the separation is derived without adhesion
+        only, and a value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------
@@ -641,8 +641,8 @@ def pressure_at_separation(surface: Surface | Scene, separation: ArrayLike, *,
         Relative accuracy of the pressure, in [1e-12, 0.1] (default 1e-10) [-]; it is the
         tolerance of the root; u(p) itself is exact to ~1e-12.
     work_of_adhesion : float
-        Delta gamma; must be 0 (the default): u(p) is derived without adhesion only, and a
-        value > 0 is a ValueError that says so. [J/m^2]
+        Delta gamma; must be 0 (the default): u(p) is derived without adhesion
+        only, and a value > 0 is a ValueError that says so. [J/m^2]
 
     Returns
     -------
